@@ -1,0 +1,316 @@
+"""Scene files: TOML text -> validated, frozen dataclasses (and back).
+
+A scene file is data only: it is parsed with :mod:`tomllib` and every value is checked against
+the type and range declared on its dataclass field. A wrong field raises
+:class:`~netgym.errors.ConfigError` naming the field (``simulation.dt``) and its allowed range.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+import typing
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any, Mapping
+
+from netgym.errors import ConfigError
+
+INTEGRATORS = ("explicit_euler", "symplectic_euler", "rk4", "implicit_euler")
+FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
+BUILTIN_SCENES = ("basket", "goal")
+
+
+def _num(lo: float, hi: float, *, lo_open: bool = False, hi_open: bool = False) -> Any:
+    """A dataclass field whose value (or each element) must lie in ``lo..hi``."""
+    return field(metadata={"range": (lo, hi, lo_open, hi_open)})
+
+
+def _choice(*options: str) -> Any:
+    """A dataclass field whose value must be one of ``options``."""
+    return field(metadata={"choices": options})
+
+
+@dataclass(frozen=True)
+class NetConfig:
+    """Geometry and mass of the net: an axis-aligned box of net faces with one face open.
+
+    ``particles`` counts particles along x, y and z (shared edges included). The open face's
+    border is fixed (the rim or the goal frame); with ``fix_side_edges`` the four box edges
+    parallel to the open face's normal are fixed too (the basket's corner poles, the goal's
+    depth bars). Fixed edges above the ground are solid capsules of ``pole_radius`` for balls.
+    ``drag`` (1/s) is the air drag on net particles, a force ``-drag * mass * velocity``: the
+    dampers along the springs do not damp a membrane's transverse swinging, air does.
+    """
+
+    lower: tuple[float, float, float] = _num(-100.0, 100.0)
+    upper: tuple[float, float, float] = _num(-100.0, 100.0)
+    particles: tuple[int, int, int] = _num(3, 200)
+    open_face: str = _choice(*FACES)
+    fix_side_edges: bool = field()
+    particle_mass: float = _num(0.0, 100.0, lo_open=True)
+    drag: float = _num(0.0, 100.0)
+    pole_radius: float = _num(0.0, 1.0, lo_open=True)
+
+
+@dataclass(frozen=True)
+class SpringConfig:
+    """Stiffness ``ks`` (N/m) and damping ``kd`` (N s/m) of one spring type."""
+
+    ks: float = _num(0.0, 1e8, lo_open=True)
+    kd: float = _num(0.0, 1e6)
+
+
+@dataclass(frozen=True)
+class SpringsConfig:
+    """Structural (grid neighbours), shear (diagonals) and bending (second neighbours) springs."""
+
+    structural: SpringConfig
+    shear: SpringConfig
+    bending: SpringConfig
+
+
+@dataclass(frozen=True)
+class BallConfig:
+    """A ball: a rigid sphere without spin."""
+
+    radius: float = _num(0.01, 2.0)
+    mass: float = _num(0.0, 100.0, lo_open=True)
+
+
+@dataclass(frozen=True)
+class ContactPairConfig:
+    """Restitution (0..1) and Coulomb friction coefficient of one kind of contact."""
+
+    restitution: float = _num(0.0, 1.0)
+    friction: float = _num(0.0, 5.0)
+
+
+@dataclass(frozen=True)
+class ContactConfig:
+    """Contact coefficients per pair; approach speeds below ``restitution_threshold`` (m/s)
+    do not bounce, which keeps resting contacts still (no ground jitter)."""
+
+    ball_net: ContactPairConfig
+    ball_pole: ContactPairConfig
+    ball_ball: ContactPairConfig
+    ball_ground: ContactPairConfig
+    net_ground: ContactPairConfig
+    restitution_threshold: float = _num(0.0, 10.0)
+
+
+@dataclass(frozen=True)
+class SimulationConfig:
+    """Integrator, time step and the numerical safeguards of the simulator.
+
+    ``max_ball_travel`` is the largest distance, as a fraction of the ball radius, that a ball
+    may move relative to the net in one substep; longer steps are split (no tunnelling).
+    """
+
+    integrator: str = _choice(*INTEGRATORS)
+    dt: float = _num(0.0, 0.05, lo_open=True)
+    gravity: float = _num(-100.0, 0.0)
+    time_limit: float = _num(0.0, 120.0, lo_open=True)
+    max_ball_travel: float = _num(0.01, 0.9)
+    cg_tolerance: float = _num(1e-14, 1e-2)
+    cg_max_iterations: int = _num(1, 10_000)
+    divergence_speed: float = _num(1.0, 1e8, lo_open=True)
+    rest_energy: float = _num(0.0, 10.0, lo_open=True)
+
+
+@dataclass(frozen=True)
+class ThrowConfig:
+    """Where throwers stand and which launches an action can ask for.
+
+    Throwers stand at a horizontal ``distance`` from the centre of the opening, at a
+    ``bearing`` (degrees, counter-clockwise from +x) and release ``height`` above the ground.
+    An action maps to launch ``speed`` (m/s), ``elevation`` above the horizon and ``azimuth``
+    offset from the direction towards the opening's centre (degrees).
+    """
+
+    distance: tuple[float, float] = _num(0.0, 100.0)
+    bearing: tuple[float, float] = _num(-360.0, 360.0)
+    height: tuple[float, float] = _num(0.0, 20.0)
+    speed: tuple[float, float] = _num(0.0, 40.0)
+    elevation: tuple[float, float] = _num(-89.0, 89.0)
+    azimuth: tuple[float, float] = _num(-180.0, 180.0)
+
+
+@dataclass(frozen=True)
+class SceneConfig:
+    """A whole scene: the net, its springs, the ball, contacts, simulation and throws."""
+
+    name: str
+    net: NetConfig
+    springs: SpringsConfig
+    ball: BallConfig
+    contact: ContactConfig
+    simulation: SimulationConfig
+    throw: ThrowConfig
+
+    def replace(self, overrides: Mapping[str, Any]) -> "SceneConfig":
+        """Return a validated copy with dotted fields replaced, e.g. ``{"simulation.dt": 5e-4}``."""
+        table = to_dict(self)
+        for dotted, value in overrides.items():
+            *parents, leaf = dotted.split(".")
+            node = table
+            for key in parents:
+                if not isinstance(node.get(key), dict):
+                    raise ConfigError(f"unknown field {dotted!r}")
+                node = node[key]
+            if leaf not in node:
+                raise ConfigError(f"unknown field {dotted!r}")
+            node[leaf] = value
+        return from_dict(table)
+
+
+def _range_text(spec: tuple[float, float, bool, bool]) -> str:
+    lo, hi, lo_open, hi_open = spec
+    return f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+
+
+def _in_range(value: float, spec: tuple[float, float, bool, bool]) -> bool:
+    lo, hi, lo_open, hi_open = spec
+    above = value > lo if lo_open else value >= lo
+    below = value < hi if hi_open else value <= hi
+    return math.isfinite(value) and above and below
+
+
+def _scalar(value: Any, kind: type, name: str, f: dataclasses.Field) -> Any:
+    if kind is bool:
+        if not isinstance(value, bool):
+            raise ConfigError(f"{name} must be true or false, got {value!r}")
+        return value
+    if kind is str:
+        if not isinstance(value, str):
+            raise ConfigError(f"{name} must be a string, got {value!r}")
+        choices = f.metadata.get("choices")
+        if choices and value not in choices:
+            raise ConfigError(f"{name} = {value!r} is not allowed; choose one of {list(choices)}")
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ConfigError(f"{name} must be a number, got {value!r}")
+    if kind is int and not isinstance(value, int):
+        raise ConfigError(f"{name} must be an integer, got {value!r}")
+    spec = f.metadata.get("range")
+    if spec and not _in_range(float(value), spec):
+        raise ConfigError(f"{name} = {value!r} is out of range; allowed: {_range_text(spec)}")
+    return kind(value)
+
+
+def _convert(value: Any, hint: Any, name: str, f: dataclasses.Field) -> Any:
+    if dataclasses.is_dataclass(hint):
+        if not isinstance(value, Mapping):
+            raise ConfigError(f"{name} must be a table, got {value!r}")
+        return _build(hint, value, name)
+    if typing.get_origin(hint) is tuple:
+        kinds = typing.get_args(hint)
+        if not isinstance(value, (list, tuple)) or len(value) != len(kinds):
+            raise ConfigError(f"{name} must be a list of {len(kinds)} numbers, got {value!r}")
+        return tuple(_scalar(v, k, f"{name}[{i}]", f) for i, (v, k) in enumerate(zip(value, kinds)))
+    return _scalar(value, hint, name, f)
+
+
+def _build(cls: type, table: Mapping[str, Any], path: str) -> Any:
+    hints = typing.get_type_hints(cls)
+    names = [f.name for f in dataclasses.fields(cls)]
+    prefix = f"{path}." if path else ""
+    unknown = sorted(set(table) - set(names))
+    if unknown:
+        raise ConfigError(f"unknown field {prefix}{unknown[0]}; allowed fields: {names}")
+    missing = [n for n in names if n not in table]
+    if missing:
+        raise ConfigError(f"missing field {prefix}{missing[0]}")
+    values = {f.name: _convert(table[f.name], hints[f.name], prefix + f.name, f)
+              for f in dataclasses.fields(cls)}
+    return cls(**values)
+
+
+def _check_consistency(cfg: SceneConfig) -> None:
+    net = cfg.net
+    for axis, (lo, hi) in enumerate(zip(net.lower, net.upper)):
+        if not lo < hi:
+            raise ConfigError(f"net.lower[{axis}] = {lo} must be below net.upper[{axis}] = {hi}")
+    if min(net.lower[2], net.upper[2]) < 0.0:
+        raise ConfigError(f"net.lower[2] = {net.lower[2]} is below the ground; allowed: >= 0")
+    for key in ("distance", "bearing", "height", "speed", "elevation", "azimuth"):
+        lo, hi = getattr(cfg.throw, key)
+        if lo > hi:
+            raise ConfigError(f"throw.{key} = [{lo}, {hi}] must be an increasing [min, max] pair")
+
+
+def from_dict(table: Mapping[str, Any]) -> SceneConfig:
+    """Validate a parsed scene table into a :class:`SceneConfig`."""
+    cfg = _build(SceneConfig, table, "")
+    _check_consistency(cfg)
+    return cfg
+
+
+def to_dict(cfg: Any) -> dict[str, Any]:
+    """The plain-data form of a config (tuples become lists), the inverse of :func:`from_dict`."""
+    out: dict[str, Any] = {}
+    for f in dataclasses.fields(cfg):
+        value = getattr(cfg, f.name)
+        if dataclasses.is_dataclass(value):
+            value = to_dict(value)
+        elif isinstance(value, tuple):
+            value = list(value)
+        out[f.name] = value
+    return out
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    return repr(value)
+
+
+def to_toml(cfg: SceneConfig) -> str:
+    """Serialise a config to TOML text that :func:`loads` reads back to an equal config."""
+    lines: list[str] = []
+
+    def emit(table: dict[str, Any], path: str) -> None:
+        scalars = {k: v for k, v in table.items() if not isinstance(v, dict)}
+        if path:
+            lines.append(f"\n[{path}]")
+        lines.extend(f"{k} = {_toml_value(v)}" for k, v in scalars.items())
+        for key, sub in table.items():
+            if isinstance(sub, dict):
+                emit(sub, f"{path}.{key}" if path else key)
+
+    emit(to_dict(cfg), "")
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def loads(text: str) -> SceneConfig:
+    """Parse and validate scene TOML text."""
+    try:
+        table = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"scene file is not valid TOML: {exc}") from exc
+    return from_dict(table)
+
+
+def load_scene(scene: str | Path = "basket", overrides: Mapping[str, Any] | None = None) -> SceneConfig:
+    """Load a built-in scene by name (``"basket"``, ``"goal"``) or a TOML file by path.
+
+    :param scene: a built-in scene name or the path of a ``.toml`` scene file.
+    :param overrides: dotted fields to replace, e.g. ``{"simulation.integrator": "rk4"}``.
+    """
+    if isinstance(scene, str) and scene in BUILTIN_SCENES:
+        text = resources.files("netgym.scenes").joinpath(f"{scene}.toml").read_text()
+    else:
+        path = Path(scene)
+        if not path.is_file():
+            raise ConfigError(f"scene {str(scene)!r} is neither a built-in scene "
+                              f"{list(BUILTIN_SCENES)} nor an existing TOML file")
+        text = path.read_text()
+    cfg = loads(text)
+    return cfg.replace(overrides) if overrides else cfg
+

@@ -1,0 +1,23 @@
+"""Named errors raised by netgym."""
+
+from __future__ import annotations
+
+
+class NetgymError(Exception):
+    """Base class of every error netgym raises on purpose."""
+
+
+class ConfigError(NetgymError, ValueError):
+    """A scene field is missing, unknown, of the wrong type or out of its allowed range."""
+
+
+class UnstableTimeStepError(NetgymError, ValueError):
+    """The requested ``dt`` is beyond the linear stability limit of an explicit integrator."""
+
+
+class SimulationDivergedError(NetgymError, FloatingPointError):
+    """The state became non-finite or a body exceeded the divergence speed.
+
+    The simulator restores the state it had before the failing call, so the object stays
+    usable (for example with a smaller ``dt`` or the implicit integrator).
+    """

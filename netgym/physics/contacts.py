@@ -1,0 +1,205 @@
+"""Contacts, resolved after each integration substep by projection and impulses.
+
+Every contact removes the overlap (split by inverse mass, so momentum is conserved) and, if
+the bodies approach, applies a normal impulse with restitution (none below the restitution
+threshold, so resting contacts stay still) and a Coulomb friction impulse bounded by
+``friction * normal impulse``. Kinds handled:
+
+- ball / net particle and ball / structural spring segment (interior points of the segment,
+  the impulse shared by its two particles by barycentric weight): springs cannot sink into
+  a ball;
+- ball / pole capsule and ball / ground: static, infinitely heavy obstacles;
+- ball / ball, every pair (no pass when there is a single ball);
+- net particle / ground.
+
+Tunnelling is prevented by the caller, which splits steps so that no ball moves more than a
+fraction of its radius relative to the net in one substep.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from netgym.physics.model import BALL_BALL, BALL_GROUND, BALL_NET, BALL_POLE, NET_GROUND
+
+
+@njit(cache=True)
+def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, friction, threshold):
+    """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j``.
+
+    The normal ``n`` points from ``a`` to the point; ``depth`` is the overlap along it.
+    A single body as the second side is ``i == j`` with ``t = 0``.
+    """
+    wa = inv_mass[a]
+    wi = (1.0 - t) * inv_mass[i]
+    wj = t * inv_mass[j] if j != i else 0.0
+    w_point = (1.0 - t) * wi + t * wj
+    total = wa + w_point
+    if total <= 0.0:
+        return
+    # position: remove the overlap
+    lam = depth / total
+    x[a, 0] -= wa * lam * nx
+    x[a, 1] -= wa * lam * ny
+    x[a, 2] -= wa * lam * nz
+    x[i, 0] += wi * lam * nx
+    x[i, 1] += wi * lam * ny
+    x[i, 2] += wi * lam * nz
+    if j != i:
+        x[j, 0] += wj * lam * nx
+        x[j, 1] += wj * lam * ny
+        x[j, 2] += wj * lam * nz
+    # velocity of the point relative to a
+    rx = (1.0 - t) * v[i, 0] + t * v[j, 0] - v[a, 0]
+    ry = (1.0 - t) * v[i, 1] + t * v[j, 1] - v[a, 1]
+    rz = (1.0 - t) * v[i, 2] + t * v[j, 2] - v[a, 2]
+    closing = rx * nx + ry * ny + rz * nz
+    if closing >= 0.0:
+        return
+    e = restitution if -closing > threshold else 0.0
+    jn = -(1.0 + e) * closing / total
+    tx = rx - closing * nx
+    ty = ry - closing * ny
+    tz = rz - closing * nz
+    slip = math.sqrt(tx * tx + ty * ty + tz * tz)
+    jt = 0.0
+    if slip > 1e-12:
+        jt = min(friction * jn, slip / total) / slip
+    # impulse on the point is +jn n - jt t_vec; on a the opposite
+    px = jn * nx - jt * tx
+    py = jn * ny - jt * ty
+    pz = jn * nz - jt * tz
+    v[a, 0] -= wa * px
+    v[a, 1] -= wa * py
+    v[a, 2] -= wa * pz
+    v[i, 0] += wi * px
+    v[i, 1] += wi * py
+    v[i, 2] += wi * pz
+    if j != i:
+        v[j, 0] += wj * px
+        v[j, 1] += wj * py
+        v[j, 2] += wj * pz
+
+
+@njit(cache=True)
+def _static_response(x, v, k, nx, ny, nz, depth, restitution, friction, threshold):
+    """Resolve a contact of body ``k`` with an immovable obstacle; ``n`` points out of the
+    obstacle towards ``k``."""
+    x[k, 0] += depth * nx
+    x[k, 1] += depth * ny
+    x[k, 2] += depth * nz
+    closing = v[k, 0] * nx + v[k, 1] * ny + v[k, 2] * nz
+    if closing >= 0.0:
+        return
+    e = restitution if -closing > threshold else 0.0
+    jn = -(1.0 + e) * closing
+    tx = v[k, 0] - closing * nx
+    ty = v[k, 1] - closing * ny
+    tz = v[k, 2] - closing * nz
+    slip = math.sqrt(tx * tx + ty * ty + tz * tz)
+    scale = 0.0
+    if slip > 1e-12:
+        scale = min(friction * jn, slip) / slip
+    v[k, 0] += jn * nx - scale * tx
+    v[k, 1] += jn * ny - scale * ty
+    v[k, 2] += jn * nz - scale * tz
+
+
+@njit(cache=True)
+def _ball_poles(x, v, b, radius, poles, coef, threshold):
+    for p in range(poles.shape[0]):
+        ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
+        ex, ey, ez = poles[p, 3] - ax, poles[p, 4] - ay, poles[p, 5] - az
+        reach = radius + poles[p, 6]
+        t = ((x[b, 0] - ax) * ex + (x[b, 1] - ay) * ey + (x[b, 2] - az) * ez) / (ex * ex + ey * ey + ez * ez)
+        t = min(max(t, 0.0), 1.0)
+        dx = x[b, 0] - (ax + t * ex)
+        dy = x[b, 1] - (ay + t * ey)
+        dz = x[b, 2] - (az + t * ez)
+        dist2 = dx * dx + dy * dy + dz * dz
+        if dist2 >= reach * reach or dist2 < 1e-24:
+            continue
+        dist = math.sqrt(dist2)
+        _static_response(x, v, b, dx / dist, dy / dist, dz / dist, reach - dist,
+                         coef[BALL_POLE, 0], coef[BALL_POLE, 1], threshold)
+
+
+@njit(cache=True)
+def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
+    e, mu = coef[BALL_NET, 0], coef[BALL_NET, 1]
+    r2 = radius * radius
+    for k in range(n_net):
+        dx = x[k, 0] - x[b, 0]
+        if abs(dx) >= radius:
+            continue
+        dy = x[k, 1] - x[b, 1]
+        if abs(dy) >= radius:
+            continue
+        dz = x[k, 2] - x[b, 2]
+        dist2 = dx * dx + dy * dy + dz * dz
+        if dist2 >= r2 or dist2 < 1e-24:
+            continue
+        dist = math.sqrt(dist2)
+        _pair_response(x, v, inv_mass, b, k, k, 0.0, dx / dist, dy / dist, dz / dist, radius - dist,
+                       e, mu, threshold)
+    for s in range(segments.shape[0]):
+        i = segments[s, 0]
+        j = segments[s, 1]
+        cx, cy, cz = x[b, 0], x[b, 1], x[b, 2]
+        if (min(x[i, 0], x[j, 0]) >= cx + radius or max(x[i, 0], x[j, 0]) <= cx - radius
+                or min(x[i, 1], x[j, 1]) >= cy + radius or max(x[i, 1], x[j, 1]) <= cy - radius
+                or min(x[i, 2], x[j, 2]) >= cz + radius or max(x[i, 2], x[j, 2]) <= cz - radius):
+            continue
+        ex = x[j, 0] - x[i, 0]
+        ey = x[j, 1] - x[i, 1]
+        ez = x[j, 2] - x[i, 2]
+        len2 = ex * ex + ey * ey + ez * ez
+        if len2 < 1e-24:
+            continue
+        t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
+        if t <= 0.0 or t >= 1.0:
+            continue  # end points are particles, handled above
+        dx = x[i, 0] + t * ex - cx
+        dy = x[i, 1] + t * ey - cy
+        dz = x[i, 2] + t * ez - cz
+        dist2 = dx * dx + dy * dy + dz * dz
+        if dist2 >= r2 or dist2 < 1e-24:
+            continue
+        dist = math.sqrt(dist2)
+        _pair_response(x, v, inv_mass, b, i, j, t, dx / dist, dy / dist, dz / dist, radius - dist,
+                       e, mu, threshold)
+
+
+@njit(cache=True)
+def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, threshold, net_box):
+    """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass).
+
+    ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
+    sphere does not overlap it skips the particle and segment tests (broad phase).
+    """
+    n = x.shape[0]
+    for b in range(n_net, n):
+        _ball_poles(x, v, b, radius, poles, coef, threshold)
+        if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
+                and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
+                and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
+            _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold)
+    reach = 2.0 * radius
+    for b in range(n_net, n):
+        for c in range(b + 1, n):
+            dx = x[c, 0] - x[b, 0]
+            dy = x[c, 1] - x[b, 1]
+            dz = x[c, 2] - x[b, 2]
+            dist2 = dx * dx + dy * dy + dz * dz
+            if dist2 >= reach * reach or dist2 < 1e-24:
+                continue
+            dist = math.sqrt(dist2)
+            _pair_response(x, v, inv_mass, b, c, c, 0.0, dx / dist, dy / dist, dz / dist, reach - dist,
+                           coef[BALL_BALL, 0], coef[BALL_BALL, 1], threshold)
+    for k in range(n):
+        floor = radius if k >= n_net else 0.0
+        if x[k, 2] < floor and inv_mass[k] > 0.0:
+            pair = BALL_GROUND if k >= n_net else NET_GROUND
+            _static_response(x, v, k, 0.0, 0.0, 1.0, floor - x[k, 2], coef[pair, 0], coef[pair, 1], threshold)

@@ -1,0 +1,76 @@
+"""Smooth forces: springs with dampers along them, and gravity. numba kernels over flat arrays.
+
+A spring between particles i and j with ``d = x_i - x_j``, ``l = |d|``, ``u = d / l`` pushes i
+with ``-(ks (l - L) + kd (v_i - v_j) . u) u`` and j with the opposite force. Air drag
+``-drag * m * v`` acts on every free body.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+
+@njit(cache=True)
+def spring_forces(x, v, springs, params, f):
+    """Add every spring's force to ``f`` (n, 3)."""
+    for s in range(springs.shape[0]):
+        i = springs[s, 0]
+        j = springs[s, 1]
+        dx = x[i, 0] - x[j, 0]
+        dy = x[i, 1] - x[j, 1]
+        dz = x[i, 2] - x[j, 2]
+        length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        if length < 1e-12:
+            continue
+        inv = 1.0 / length
+        ux = dx * inv
+        uy = dy * inv
+        uz = dz * inv
+        closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
+        mag = -params[s, 1] * (length - params[s, 0]) - params[s, 2] * closing
+        f[i, 0] += mag * ux
+        f[i, 1] += mag * uy
+        f[i, 2] += mag * uz
+        f[j, 0] -= mag * ux
+        f[j, 1] -= mag * uy
+        f[j, 2] -= mag * uz
+
+
+@njit(cache=True)
+def accelerations(x, v, inv_mass, gravity, drag, springs, params, a):
+    """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs,
+    gravity and linear air drag ``-drag * v``."""
+    a[:] = 0.0
+    spring_forces(x, v, springs, params, a)
+    for k in range(x.shape[0]):
+        w = inv_mass[k]
+        if w > 0.0:
+            a[k, 0] = a[k, 0] * w - drag * v[k, 0]
+            a[k, 1] = a[k, 1] * w - drag * v[k, 1]
+            a[k, 2] = a[k, 2] * w - drag * v[k, 2] + gravity
+        else:
+            a[k, 0] = 0.0
+            a[k, 1] = 0.0
+            a[k, 2] = 0.0
+
+
+@njit(cache=True)
+def energies(x, v, inv_mass, gravity, springs, params):
+    """(kinetic, spring potential, gravitational potential) of all free bodies, in joules."""
+    kinetic = 0.0
+    potential_g = 0.0
+    for k in range(x.shape[0]):
+        w = inv_mass[k]
+        if w > 0.0:
+            m = 1.0 / w
+            kinetic += 0.5 * m * (v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
+            potential_g -= m * gravity * x[k, 2]
+    potential_s = 0.0
+    for s in range(springs.shape[0]):
+        i = springs[s, 0]
+        j = springs[s, 1]
+        length = math.sqrt((x[i, 0] - x[j, 0]) ** 2 + (x[i, 1] - x[j, 1]) ** 2 + (x[i, 2] - x[j, 2]) ** 2)
+        potential_s += 0.5 * params[s, 1] * (length - params[s, 0]) ** 2
+    return kinetic, potential_s, potential_g

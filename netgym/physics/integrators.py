@@ -1,0 +1,210 @@
+"""Time integrators for the smooth forces (springs, dampers, gravity); contacts come after.
+
+Four methods, one numba kernel each, selected by code (the index in
+:data:`netgym.config.INTEGRATORS`):
+
+====================  =====  ===============================================================
+integrator            order  notes
+====================  =====  ===============================================================
+explicit_euler        1      the seed's method: x += dt v(t), v += dt a(t)
+symplectic_euler      1      v += dt a(t), then x += dt v(t+dt); bounded energy error
+rk4                   4      classical Runge-Kutta, four force evaluations per step
+implicit_euler        1      linearised backward Euler (Baraff-Witkin), matrix-free
+                             conjugate gradients; stable at large dt
+====================  =====  ===============================================================
+
+Every kernel takes a ``work`` array of shape (WORK_SLOTS, n, 3) and a ``coef`` array of
+shape (n_springs, 5) as scratch space, so a step allocates nothing.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from netgym.physics.forces import accelerations, spring_forces
+
+EXPLICIT_EULER, SYMPLECTIC_EULER, RK4, IMPLICIT_EULER = range(4)
+WORK_SLOTS = 7
+
+
+def workspace(n_bodies: int, n_springs: int) -> tuple[np.ndarray, np.ndarray]:
+    """Scratch arrays (work, coef) for bodies and springs of this size."""
+    return np.zeros((WORK_SLOTS, n_bodies, 3)), np.zeros((max(n_springs, 1), 5))
+
+
+@njit(cache=True)
+def step_explicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work):
+    """x(t+dt) = x + dt v, v(t+dt) = v + dt a(x, v)."""
+    a = work[0]
+    accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
+    for k in range(x.shape[0]):
+        for c in range(3):
+            x[k, c] += dt * v[k, c]
+            v[k, c] += dt * a[k, c]
+
+
+@njit(cache=True)
+def step_symplectic_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work):
+    """v(t+dt) = v + dt a(x, v), then x(t+dt) = x + dt v(t+dt)."""
+    a = work[0]
+    accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
+    for k in range(x.shape[0]):
+        for c in range(3):
+            v[k, c] += dt * a[k, c]
+            x[k, c] += dt * v[k, c]
+
+
+@njit(cache=True)
+def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
+    """Classical fourth-order Runge-Kutta on (x, v)."""
+    xs, vs, a, xsum, vsum = work[0], work[1], work[2], work[3], work[4]
+    accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
+    xsum[:] = v
+    vsum[:] = a
+    for stage in range(3):
+        h = dt if stage == 2 else 0.5 * dt
+        weight = 1.0 if stage == 2 else 2.0
+        # stage velocity is v + h * a(prev); stage position is x + h * v(prev)
+        for k in range(x.shape[0]):
+            for c in range(3):
+                vel = vs[k, c] if stage > 0 else v[k, c]
+                xs[k, c] = x[k, c] + h * vel
+                vs[k, c] = v[k, c] + h * a[k, c]
+        accelerations(xs, vs, inv_mass, gravity, drag, springs, params, a)
+        for k in range(x.shape[0]):
+            for c in range(3):
+                xsum[k, c] += weight * vs[k, c]
+                vsum[k, c] += weight * a[k, c]
+    for k in range(x.shape[0]):
+        for c in range(3):
+            x[k, c] += dt / 6.0 * xsum[k, c]
+            v[k, c] += dt / 6.0 * vsum[k, c]
+
+
+@njit(cache=True)
+def _system_product(y, inv_mass, mass_scale, springs, coef, out):
+    """out = (M - dt df/dv - dt^2 df/dx) y, with rows of fixed bodies zero; the drag part of
+    df/dv is the factor ``mass_scale = 1 + dt * drag`` on M."""
+    for k in range(y.shape[0]):
+        w = inv_mass[k]
+        m = mass_scale / w if w > 0.0 else 0.0
+        out[k, 0] = m * y[k, 0]
+        out[k, 1] = m * y[k, 1]
+        out[k, 2] = m * y[k, 2]
+    for s in range(springs.shape[0]):
+        i = springs[s, 0]
+        j = springs[s, 1]
+        dx = y[i, 0] - y[j, 0]
+        dy = y[i, 1] - y[j, 1]
+        dz = y[i, 2] - y[j, 2]
+        ux, uy, uz, iso, axial = coef[s, 0], coef[s, 1], coef[s, 2], coef[s, 3], coef[s, 4]
+        along = axial * (ux * dx + uy * dy + uz * dz)
+        px = iso * dx + along * ux
+        py = iso * dy + along * uy
+        pz = iso * dz + along * uz
+        out[i, 0] += px
+        out[i, 1] += py
+        out[i, 2] += pz
+        out[j, 0] -= px
+        out[j, 1] -= py
+        out[j, 2] -= pz
+    for k in range(y.shape[0]):
+        if inv_mass[k] == 0.0:
+            out[k, 0] = 0.0
+            out[k, 1] = 0.0
+            out[k, 2] = 0.0
+
+
+@njit(cache=True)
+def _dot(a, b):
+    total = 0.0
+    for k in range(a.shape[0]):
+        total += a[k, 0] * b[k, 0] + a[k, 1] * b[k, 1] + a[k, 2] * b[k, 2]
+    return total
+
+
+@njit(cache=True)
+def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tolerance, max_iterations,
+                        work, coef):
+    """Linearised backward Euler (Baraff & Witkin 1998).
+
+    Solves ``(M - dt D - dt^2 K) dv = dt (f + dt K v)`` by Jacobi-preconditioned conjugate
+    gradients, where K = df/dx (with the transverse term clamped at zero under compression so
+    the system stays positive definite) and D = df/dv; then v += dv, x += dt v.
+    Returns the number of CG iterations used.
+    """
+    f, r, p, z, q, dv, diag = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
+    n = x.shape[0]
+    f[:] = 0.0
+    spring_forces(x, v, springs, params, f)
+    mass_scale = 1.0 + dt * drag
+    for k in range(n):
+        w = inv_mass[k]
+        m = 1.0 / w if w > 0.0 else 0.0
+        for c in range(3):
+            f[k, c] -= drag * m * v[k, c]
+            diag[k, c] = mass_scale * m
+        f[k, 2] += m * gravity
+    for s in range(springs.shape[0]):
+        i = springs[s, 0]
+        j = springs[s, 1]
+        dx = x[i, 0] - x[j, 0]
+        dy = x[i, 1] - x[j, 1]
+        dz = x[i, 2] - x[j, 2]
+        length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        inv = 1.0 / length if length > 1e-12 else 0.0
+        ux, uy, uz = dx * inv, dy * inv, dz * inv
+        ks, kd = params[s, 1], params[s, 2]
+        stretch = 1.0 - params[s, 0] * inv if length > 1e-12 else 0.0
+        iso = dt * dt * ks * max(stretch, 0.0)
+        axial = dt * dt * ks + dt * kd - iso
+        coef[s, 0], coef[s, 1], coef[s, 2], coef[s, 3], coef[s, 4] = ux, uy, uz, iso, axial
+        for c, uc in ((0, ux), (1, uy), (2, uz)):
+            contribution = iso + axial * uc * uc
+            diag[i, c] += contribution
+            diag[j, c] += contribution
+        # rhs term dt^2 K v (stiffness part only: iso and dt^2 ks along u)
+        rx = v[i, 0] - v[j, 0]
+        ry = v[i, 1] - v[j, 1]
+        rz = v[i, 2] - v[j, 2]
+        along = (dt * dt * ks - iso) * (ux * rx + uy * ry + uz * rz)
+        f[i, 0] -= (iso * rx + along * ux) / dt
+        f[i, 1] -= (iso * ry + along * uy) / dt
+        f[i, 2] -= (iso * rz + along * uz) / dt
+        f[j, 0] += (iso * rx + along * ux) / dt
+        f[j, 1] += (iso * ry + along * uy) / dt
+        f[j, 2] += (iso * rz + along * uz) / dt
+    # r = rhs - A dv with dv = 0 initially; rhs = dt * f (already holds f + dt K v)
+    for k in range(n):
+        free = inv_mass[k] > 0.0
+        for c in range(3):
+            dv[k, c] = 0.0
+            r[k, c] = dt * f[k, c] if free else 0.0
+            z[k, c] = r[k, c] / diag[k, c] if free else 0.0
+            p[k, c] = z[k, c]
+    rz_old = _dot(r, z)
+    threshold = tolerance * tolerance * _dot(r, r)
+    iterations = 0
+    while iterations < max_iterations and _dot(r, r) > threshold and rz_old > 0.0:
+        _system_product(p, inv_mass, mass_scale, springs, coef, q)
+        alpha = rz_old / _dot(p, q)
+        for k in range(n):
+            for c in range(3):
+                dv[k, c] += alpha * p[k, c]
+                r[k, c] -= alpha * q[k, c]
+                z[k, c] = r[k, c] / diag[k, c] if inv_mass[k] > 0.0 else 0.0
+        rz_new = _dot(r, z)
+        beta = rz_new / rz_old
+        rz_old = rz_new
+        for k in range(n):
+            for c in range(3):
+                p[k, c] = z[k, c] + beta * p[k, c]
+        iterations += 1
+    for k in range(n):
+        for c in range(3):
+            v[k, c] += dv[k, c]
+            x[k, c] += dt * v[k, c]
+    return iterations

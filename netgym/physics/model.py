@@ -1,0 +1,112 @@
+"""Model (static arrays of a scene) and State (what changes while it runs).
+
+Bodies are rows of one position/velocity array: rows ``0 .. n_net-1`` are net particles,
+the rows after them are balls, in launch order. Kernels work on these flat float64 arrays.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from netgym.config import INTEGRATORS, SceneConfig
+from netgym.physics.net import SPRING_KINDS, STRUCTURAL, NetGeometry, build_net
+
+# rows of Model.contact: (restitution, friction) per kind of contact
+BALL_NET, BALL_POLE, BALL_BALL, BALL_GROUND, NET_GROUND = range(5)
+_CONTACT_PAIRS = ("ball_net", "ball_pole", "ball_ball", "ball_ground", "net_ground")
+
+
+@dataclass(frozen=True)
+class Model:
+    """Static description of a scene, as arrays ready for the kernels.
+
+    ``springs`` holds particle index pairs, ``spring_params`` the columns (rest length, ks, kd).
+    ``segments`` are the structural springs, against which balls collide (not only the
+    particles: springs never sink into a ball). ``poles`` rows are capsules
+    ``(ax, ay, az, bx, by, bz, radius)``.
+    """
+
+    config: SceneConfig
+    geometry: NetGeometry
+    n_net: int
+    net_inv_mass: np.ndarray
+    springs: np.ndarray
+    spring_params: np.ndarray
+    spring_kind: np.ndarray
+    segments: np.ndarray
+    poles: np.ndarray
+    contact: np.ndarray
+    restitution_threshold: float
+    gravity: float
+    drag: float
+    ball_radius: float
+    ball_mass: float
+    opening: np.ndarray
+    integrator_code: int
+
+    @classmethod
+    def from_config(cls, config: SceneConfig) -> "Model":
+        """Build the model of a scene."""
+        geo = build_net(config.net)
+        rest = np.linalg.norm(geo.positions[geo.springs[:, 0]] - geo.positions[geo.springs[:, 1]], axis=1)
+        per_kind = np.array([[getattr(config.springs, k).ks, getattr(config.springs, k).kd] for k in SPRING_KINDS])
+        params = np.column_stack([rest, per_kind[geo.spring_kind]])
+        inv_mass = np.where(geo.fixed, 0.0, 1.0 / config.net.particle_mass)
+        poles = np.column_stack([geo.poles, np.full(len(geo.poles), config.net.pole_radius)])
+        contact = np.array([[getattr(config.contact, p).restitution, getattr(config.contact, p).friction]
+                            for p in _CONTACT_PAIRS])
+        return cls(
+            config=config,
+            geometry=geo,
+            n_net=len(geo.positions),
+            net_inv_mass=inv_mass,
+            springs=np.ascontiguousarray(geo.springs),
+            spring_params=np.ascontiguousarray(params),
+            spring_kind=geo.spring_kind,
+            segments=np.ascontiguousarray(geo.springs[geo.spring_kind == STRUCTURAL]),
+            poles=np.ascontiguousarray(poles),
+            contact=contact,
+            restitution_threshold=config.contact.restitution_threshold,
+            gravity=config.simulation.gravity,
+            drag=config.net.drag,
+            ball_radius=config.ball.radius,
+            ball_mass=config.ball.mass,
+            opening=geo.opening.as_array(),
+            integrator_code=INTEGRATORS.index(config.simulation.integrator),
+        )
+
+    @property
+    def n_springs(self) -> int:
+        """Number of springs of all kinds."""
+        return len(self.springs)
+
+
+@dataclass
+class State:
+    """Positions ``x`` and velocities ``v`` of all bodies, their inverse masses, each ball's
+    ``entered`` flag (1 once it came in through the opening, 0 again if it left through it)
+    and the simulated ``time``."""
+
+    x: np.ndarray
+    v: np.ndarray
+    inv_mass: np.ndarray
+    entered: np.ndarray
+    time: float = 0.0
+
+    @classmethod
+    def at_rest(cls, model: Model, positions: np.ndarray | None = None) -> "State":
+        """The net at ``positions`` (default: its built geometry), still, with no balls."""
+        x = np.array(model.geometry.positions if positions is None else positions, dtype=np.float64)
+        return cls(x=x, v=np.zeros_like(x), inv_mass=model.net_inv_mass.copy(),
+                   entered=np.zeros(0, dtype=np.int8))
+
+    def copy(self) -> "State":
+        """An independent copy."""
+        return State(self.x.copy(), self.v.copy(), self.inv_mass.copy(), self.entered.copy(), self.time)
+
+    def restore(self, other: "State") -> None:
+        """Overwrite this state in place with ``other``'s values."""
+        self.x, self.v = other.x.copy(), other.v.copy()
+        self.inv_mass, self.entered, self.time = other.inv_mass.copy(), other.entered.copy(), other.time

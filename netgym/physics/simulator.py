@@ -1,0 +1,389 @@
+"""The public simulator: a scene's net, its balls, stepping and whole throws.
+
+A throw starts from a net at rest. Its fast path models only what the scene needs: the ball
+flies in closed form while it is clear of the net, poles and other balls (the net, at rest,
+is not integrated then); once it comes near, everything is integrated with the scene's
+integrator; the throw ends as soon as its outcome is decided. ``throw(..., fast=False)``
+integrates everything from launch to the time limit instead, as a reference.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from netgym.config import INTEGRATORS, SceneConfig, load_scene
+from netgym.errors import SimulationDivergedError, UnstableTimeStepError
+from netgym.physics import flight, stepping
+from netgym.physics.forces import energies
+from netgym.physics.integrators import IMPLICIT_EULER, workspace
+from netgym.physics.model import BALL_GROUND, Model, State
+from netgym.physics.stability import NetModes, net_modes, stable_dt
+
+CHUNK_SECONDS = 0.01          # simulated time between two checks of a throw's outcome
+REST_WINDOW = 0.1             # s of low kinetic energy that count as "at rest"
+CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
+AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
+RELAX_DT = 0.01               # s, implicit Euler step used to bring the net to rest
+RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
+RELAX_DISPLACEMENT = 1e-3     # m ... by more than this
+SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
+MAX_LAUNCH_SPEED = 100.0      # m/s
+
+
+@dataclass(frozen=True)
+class ThrowResult:
+    """Outcome of one throw.
+
+    :param captured: the ball came in through the opening and is inside the net.
+    :param entered: the ball's centre crossed the opening inwards (and did not leave through it).
+    :param final_position: ball centre when the outcome was decided (m).
+    :param final_velocity: ball velocity then (m/s).
+    :param time: simulated seconds from launch to the decision.
+    :param substeps: integration substeps spent (0 when decided in closed form).
+    :param reason: ``"flies_away"``, ``"cannot_reach_opening"``, ``"at_rest"`` or ``"time_limit"``.
+    """
+
+    captured: bool
+    entered: bool
+    final_position: np.ndarray
+    final_velocity: np.ndarray
+    time: float
+    substeps: int
+    reason: str
+
+
+@dataclass(frozen=True)
+class Energy:
+    """Kinetic, spring and gravitational potential energy of all free bodies (J)."""
+
+    kinetic: float
+    spring: float
+    gravity: float
+
+    @property
+    def total(self) -> float:
+        """Sum of the three."""
+        return self.kinetic + self.spring + self.gravity
+
+
+_SETTLED: dict[SceneConfig, np.ndarray] = {}
+
+
+class Simulator:
+    """Mass-spring net, poles and balls of one scene.
+
+    :param scene: a :class:`SceneConfig`, a built-in scene name or a TOML path.
+    :param overrides: dotted config fields to replace, e.g. ``{"simulation.dt": 1e-3}``.
+    :param check_stability: refuse an explicit integrator whose ``dt`` is beyond the linear
+        stability limit estimated for this net (raises :class:`UnstableTimeStepError`).
+    """
+
+    def __init__(self, scene: SceneConfig | str | Path = "basket",
+                 overrides: Mapping[str, Any] | None = None, check_stability: bool = True) -> None:
+        config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
+        if overrides:
+            config = config.replace(overrides)
+        self.config = config
+        self.model = Model.from_config(config)
+        self.state = State.at_rest(self.model)
+        self._stats = np.zeros(2)
+        self._work, self._coef = workspace(self.model.n_net, self.model.n_springs)
+        self._awake = False
+        sim = config.simulation
+        self._dt, self._integrator = sim.dt, self.model.integrator_code
+        self.state = State.at_rest(self.model, self._settled_positions())
+        self.modes: NetModes = net_modes(self.state.x, self.model.net_inv_mass,
+                                         self.model.springs, self.model.spring_params, self.model.drag)
+        self.stable_dt = stable_dt(self._integrator, self.modes)
+        if check_stability and sim.dt > self.stable_dt:
+            raise UnstableTimeStepError(
+                f"simulation.dt = {sim.dt:g} s is beyond the linear stability limit "
+                f"{self.stable_dt:.3g} s of {sim.integrator} on this net (highest frequency "
+                f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
+                f"dt <= {self.stable_dt:.3g} s or integrator = \"implicit_euler\"")
+        self._rest_state = self.state.copy()
+
+    # ------------------------------------------------------------------ state access
+    @property
+    def n_balls(self) -> int:
+        """Number of balls in the scene."""
+        return self.state.x.shape[0] - self.model.n_net
+
+    @property
+    def ball_positions(self) -> np.ndarray:
+        """(n_balls, 3) ball centres (a copy)."""
+        return self.state.x[self.model.n_net:].copy()
+
+    @property
+    def ball_velocities(self) -> np.ndarray:
+        """(n_balls, 3) ball velocities (a copy)."""
+        return self.state.v[self.model.n_net:].copy()
+
+    @property
+    def substeps(self) -> int:
+        """Integration substeps taken since construction."""
+        return int(self._stats[stepping.SUBSTEPS])
+
+    @property
+    def cg_iterations(self) -> int:
+        """Conjugate-gradient iterations taken by implicit Euler since construction."""
+        return int(self._stats[stepping.CG_ITERATIONS])
+
+    def energy(self) -> Energy:
+        """Energy of the current state."""
+        s = self.state
+        return Energy(*energies(s.x, s.v, s.inv_mass, self.model.gravity, self.model.springs,
+                                self.model.spring_params))
+
+    # ------------------------------------------------------------------ editing
+    def reset(self) -> None:
+        """Back to the net at rest, without balls, at time 0."""
+        self.state.restore(self._rest_state)
+        self._awake = False
+
+    def launch_ball(self, position: Any, velocity: Any) -> int:
+        """Add a ball at ``position`` (m) with ``velocity`` (m/s); returns its ball index.
+
+        A ball launched inside the net box counts as having entered it.
+        """
+        p = _vector(position, "position")
+        v = _vector(velocity, "velocity")
+        r = self.model.ball_radius
+        if p[2] < r:
+            raise ValueError(f"position z = {p[2]:g} m puts the ball (radius {r:g} m) below the ground")
+        speed = float(np.linalg.norm(v))
+        if speed > MAX_LAUNCH_SPEED:
+            raise ValueError(f"velocity has speed {speed:g} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
+        s = self.state
+        s.x = np.vstack([s.x, p])
+        s.v = np.vstack([s.v, v])
+        s.inv_mass = np.append(s.inv_mass, 1.0 / self.model.ball_mass)
+        s.entered = np.append(s.entered, np.int8(self._inside_box(p)))
+        self._work, self._coef = workspace(s.x.shape[0], self.model.n_springs)
+        return self.n_balls - 1
+
+    def remove_ball(self, index: int) -> None:
+        """Take ball ``index`` out of the scene."""
+        if not 0 <= index < self.n_balls:
+            raise IndexError(f"ball index {index} out of range; the scene has {self.n_balls} balls")
+        s, row = self.state, self.model.n_net + index
+        s.x, s.v = np.delete(s.x, row, axis=0), np.delete(s.v, row, axis=0)
+        s.inv_mass, s.entered = np.delete(s.inv_mass, row), np.delete(s.entered, index)
+        self._work, self._coef = workspace(s.x.shape[0], self.model.n_springs)
+        self._awake = True
+
+    # ------------------------------------------------------------------ stepping
+    def step(self, n_steps: int = 1) -> None:
+        """Integrate everything for ``n_steps`` steps of the scene's ``dt`` (no shortcuts)."""
+        self._advance(n_steps, self._integrator, self._dt)
+        self._awake = True
+
+    def relax(self, max_time: float = 60.0) -> None:
+        """Bring the net and the balls in it to their equilibrium: the pause between two throws.
+
+        Dynamic relaxation: implicit Euler at a large step with kinetic damping (all velocities
+        are zeroed whenever the kinetic energy passes a peak), until no body moves more than
+        RELAX_DISPLACEMENT over RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it
+        does not settle within ``max_time``.
+        """
+        previous = math.inf
+        steps = round(RELAX_WINDOW / RELAX_DT)
+        for _ in range(int(max_time / RELAX_WINDOW) + 1):
+            start = self.state.x.copy()
+            for _ in range(steps):
+                self._advance(1, IMPLICIT_EULER, RELAX_DT)
+                kinetic = self.energy().kinetic
+                if kinetic < previous:
+                    self.state.v[:] = 0.0
+                    kinetic = 0.0
+                previous = kinetic
+            if float(np.abs(self.state.x - start).max(initial=0.0)) < RELAX_DISPLACEMENT:
+                self.state.v[:] = 0.0
+                self._awake = False
+                return
+        raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
+
+    def _advance(self, n_steps: int, integrator: int, dt: float) -> None:
+        m, s = self.model, self.state
+        sim = self.config.simulation
+        before = s.copy()
+        status = stepping.advance(
+            s.x, s.v, s.inv_mass, s.entered, m.n_net, m.springs, m.spring_params, m.segments,
+            m.poles, m.contact, m.restitution_threshold, m.gravity, m.drag, m.ball_radius, m.opening,
+            integrator, dt, n_steps, sim.max_ball_travel, sim.cg_tolerance, sim.cg_max_iterations,
+            sim.divergence_speed, self._work, self._coef, self._stats)
+        if status != stepping.OK:
+            s.restore(before)
+            raise SimulationDivergedError(
+                f"{INTEGRATORS[integrator]} at dt = {dt:g} s diverged (a speed exceeded "
+                f"{sim.divergence_speed:g} m/s or became non-finite) within {n_steps} steps from "
+                f"t = {before.time:g} s; the state was restored. Use a smaller simulation.dt "
+                f"(linear stability limit of {INTEGRATORS[self._integrator]} here: "
+                f"{self.stable_dt:.3g} s) or integrator = \"implicit_euler\"")
+        s.time += n_steps * dt
+
+    def _settled_positions(self) -> np.ndarray:
+        key = self.config
+        if key not in _SETTLED:
+            self.relax()
+            _SETTLED[key] = self.state.x.copy()
+        return _SETTLED[key]
+
+    # ------------------------------------------------------------------ geometry helpers
+    def _inside_box(self, p: np.ndarray) -> bool:
+        o = self.model.geometry.opening
+        u, w = o.tangent_axes
+        inner = o.sign * (p[o.axis] - o.plane) < 0.0
+        return bool(inner and o.tangent_lower[0] <= p[u] <= o.tangent_upper[0]
+                    and o.tangent_lower[1] <= p[w] <= o.tangent_upper[1])
+
+    def _opening_lowest_z(self) -> float:
+        o = self.model.geometry.opening
+        if o.axis == 2:
+            return o.plane
+        return o.tangent_lower[o.tangent_axes.index(2)]
+
+    def _ground(self) -> flight.Ground:
+        m = self.model
+        return flight.Ground(m.ball_radius, m.gravity, m.contact[BALL_GROUND, 0],
+                             m.contact[BALL_GROUND, 1], m.restitution_threshold)
+
+    def _clearance(self, row: int) -> float:
+        """Distance the ball in ``row`` can travel before it could touch the net, a pole or
+        another ball (the net held still)."""
+        m, x = self.model, self.state.x
+        c, r = x[row], m.ball_radius
+        net = x[:m.n_net]
+        seg = net[m.segments[:, 0]] - net[m.segments[:, 1]]
+        half_segment = 0.5 * float(np.sqrt(np.max(np.sum(seg * seg, axis=1))))
+        gap = float(np.sqrt(np.min(np.sum((net - c) ** 2, axis=1)))) - r - half_segment
+        a, b = m.poles[:, :3], m.poles[:, 3:6]
+        e = b - a
+        t = np.clip(np.sum((c - a) * e, axis=1) / np.sum(e * e, axis=1), 0.0, 1.0)
+        pole_gap = np.linalg.norm(c - (a + t[:, None] * e), axis=1) - r - m.poles[:, 6]
+        gap = min(gap, float(pole_gap.min(initial=math.inf)))
+        others = np.delete(x[m.n_net:], row - m.n_net, axis=0)
+        if len(others):
+            gap = min(gap, float(np.sqrt(np.min(np.sum((others - c) ** 2, axis=1)))) - 2.0 * r)
+        return gap
+
+    def _region(self, row: int, margin: float) -> tuple[np.ndarray, np.ndarray]:
+        """Bounding box of the net, poles and the other balls, grown by the ball radius + margin."""
+        m = self.model
+        pts = np.vstack([np.delete(self.state.x, row, axis=0), m.poles[:, :3], m.poles[:, 3:6]])
+        grow = m.ball_radius + float(m.poles[:, 6].max(initial=0.0)) + margin
+        return pts.min(axis=0) - grow, pts.max(axis=0) + grow
+
+    # ------------------------------------------------------------------ throws
+    def throw(self, position: Any, velocity: Any, fast: bool = True) -> ThrowResult:
+        """Launch a ball and simulate until its outcome is decided.
+
+        The net is first brought to rest if it still moves. A captured ball stays in the scene;
+        a missed one is removed. With ``fast=False`` everything is integrated from launch to the
+        time limit (the reference the fast path is tested against).
+        """
+        if self._awake:
+            self.relax()
+        start = self.state.copy()
+        ball = self.launch_ball(position, velocity)
+        try:
+            result = self._run_throw(ball, fast)
+        except SimulationDivergedError:
+            self.state.restore(start)
+            self._work, self._coef = workspace(start.x.shape[0], self.model.n_springs)
+            raise
+        if not result.captured:
+            self.remove_ball(ball)
+        return result
+
+    def _run_throw(self, ball: int, fast: bool) -> ThrowResult:
+        m, s, sim = self.model, self.state, self.config.simulation
+        row = m.n_net + ball
+        t0, substeps0 = s.time, self.substeps
+        deadline = t0 + sim.time_limit
+        chunk = max(1, round(CHUNK_SECONDS / sim.dt))
+        ground = self._ground()
+        reference_energy = self._potential_without(row)
+        rest_since: float | None = None
+        while True:
+            if fast and not self._awake:
+                reason = self._fly(row, deadline, ground)
+                if reason is not None:
+                    break
+                self._awake = True
+            else:
+                self._advance(min(chunk, max(1, round((deadline - s.time) / sim.dt))), self._integrator, sim.dt)
+            if s.time >= deadline - 1e-12:
+                reason = "time_limit"
+                break
+            if not fast:
+                continue
+            kinetic = self.energy().kinetic
+            rest_since = (rest_since if rest_since is not None else s.time) if kinetic < sim.rest_energy else None
+            reason = self._decided(row, ground, reference_energy, kinetic, rest_since)
+            if reason is not None:
+                break
+            others = np.arange(s.x.shape[0]) != row
+            if float(np.abs(s.v[others]).max(initial=0.0)) < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
+                s.v[others] = 0.0
+                self._awake = False
+        entered = bool(s.entered[ball])
+        return ThrowResult(captured=entered and self._inside_box(s.x[row]), entered=entered,
+                           final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
+                           time=s.time - t0, substeps=self.substeps - substeps0, reason=reason)
+
+    def _fly(self, row: int, deadline: float, ground: flight.Ground) -> str | None:
+        """Move the ball in closed form while it is clear of everything. Returns a decision
+        reason, or None when the ball came close enough to need simulating."""
+        s, g = self.state, abs(self.model.gravity)
+        lo, hi = self._region(row, CLEARANCE)
+        while True:
+            if flight.entry_time(s.x[row], s.v[row], lo, hi, ground, deadline - s.time) is None:
+                return "flies_away"
+            gap = self._clearance(row)
+            if gap <= CLEARANCE:
+                return None
+            speed = float(np.linalg.norm(s.v[row]))
+            tau = (gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g))
+            tau = min(tau, deadline - s.time)
+            before = s.x[self.model.n_net:].copy()
+            s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, ground)
+            stepping.update_entered(s.x, before, self.model.n_net, s.entered, self.model.opening)
+            s.time += tau
+            if s.time >= deadline - 1e-12:
+                return "time_limit"
+
+    def _potential_without(self, row: int) -> float:
+        e = self.energy()
+        s = self.state
+        return e.spring + e.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
+
+    def _decided(self, row: int, ground: flight.Ground, reference_energy: float, kinetic: float,
+                 rest_since: float | None) -> str | None:
+        s, m = self.state, self.model
+        lo, hi = self._region(row, AWAKE_MARGIN)
+        p = s.x[row]
+        outside = bool(np.any(p < lo) or np.any(p > hi))
+        if outside and flight.entry_time(p, s.v[row], lo, hi, ground, math.inf) is None:
+            return "flies_away"
+        if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
+            return "at_rest"
+        free = kinetic + max(0.0, self._potential_without(row) - reference_energy)
+        reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
+        if reach < self._opening_lowest_z():
+            return "cannot_reach_opening"
+        return None
+
+
+def _vector(value: Any, name: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (3,):
+        raise ValueError(f"{name} must have shape (3,), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+    return arr

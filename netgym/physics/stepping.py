@@ -1,0 +1,134 @@
+"""The hot loop: many integration steps, with contacts and opening crossings, in one numba call."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from netgym.physics.contacts import resolve_contacts
+from netgym.physics.integrators import (
+    EXPLICIT_EULER,
+    RK4,
+    SYMPLECTIC_EULER,
+    step_explicit_euler,
+    step_implicit_euler,
+    step_rk4,
+    step_symplectic_euler,
+)
+
+OK, DIVERGED = 0, 1
+# slots of the ``stats`` array that :func:`advance` accumulates into
+SUBSTEPS, CG_ITERATIONS = 0, 1
+
+
+@njit(cache=True)
+def _max_speeds(v, n_net):
+    """(largest net particle speed, largest ball speed); NaN if any velocity is not finite."""
+    net = 0.0
+    ball = 0.0
+    for k in range(v.shape[0]):
+        s2 = v[k, 0] * v[k, 0] + v[k, 1] * v[k, 1] + v[k, 2] * v[k, 2]
+        if not math.isfinite(s2):
+            return math.nan, math.nan
+        if k < n_net:
+            net = max(net, s2)
+        else:
+            ball = max(ball, s2)
+    return math.sqrt(net), math.sqrt(ball)
+
+
+@njit(cache=True)
+def _net_box(x, n_net, box):
+    for c in range(3):
+        box[c] = math.inf
+        box[c + 3] = -math.inf
+    for k in range(n_net):
+        for c in range(3):
+            box[c] = min(box[c], x[k, c])
+            box[c + 3] = max(box[c + 3], x[k, c])
+
+
+@njit(cache=True)
+def _exact_ball_flight(x, v, before, before_v, n_net, gravity, h):
+    """Balls feel only gravity between contacts: give them the exact parabola, whatever the
+    integrator (so a ball's free flight has no time-discretisation error)."""
+    for b in range(before.shape[0]):
+        k = n_net + b
+        for c in range(3):
+            x[k, c] = before[b, c] + h * before_v[b, c]
+            v[k, c] = before_v[b, c]
+        x[k, 2] += 0.5 * gravity * h * h
+        v[k, 2] += gravity * h
+
+
+@njit(cache=True)
+def update_entered(x, before, n_net, entered, opening):
+    """Set a ball's flag when its centre crosses the opening inwards inside the rectangle,
+    clear it when it crosses outwards."""
+    axis = int(opening[0])
+    sign = opening[1]
+    u = int(opening[3])
+    w = int(opening[4])
+    for b in range(entered.shape[0]):
+        k = n_net + b
+        h0 = sign * (before[b, axis] - opening[2])
+        h1 = sign * (x[k, axis] - opening[2])
+        if (h0 >= 0.0) == (h1 >= 0.0):
+            continue
+        s = h0 / (h0 - h1)
+        cu = before[b, u] + s * (x[k, u] - before[b, u])
+        cw = before[b, w] + s * (x[k, w] - before[b, w])
+        if opening[5] <= cu <= opening[6] and opening[7] <= cw <= opening[8]:
+            entered[b] = 1 if h1 < 0.0 else 0
+
+
+@njit(cache=True)
+def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, contact, threshold,
+            gravity, drag, radius, opening, integrator, dt, n_steps, max_travel, cg_tolerance,
+            cg_max_iterations, divergence_speed, work, coef, stats):
+    """Advance the state by ``n_steps`` steps of ``dt``, in place.
+
+    Balls move on their exact free-flight parabola between contacts. A step is split into equal substeps when a ball could otherwise move more than
+    ``max_travel * radius`` relative to the net in one. After each substep contacts are
+    resolved and the balls' ``entered`` flags updated. Returns OK, or DIVERGED as soon as a
+    velocity is non-finite or above ``divergence_speed`` (the state is then invalid and the
+    caller restores its copy).
+    """
+    n_balls = x.shape[0] - n_net
+    before = np.empty((n_balls, 3))
+    before_v = np.empty((n_balls, 3))
+    box = np.empty(6)
+    for _ in range(n_steps):
+        net_speed, ball_speed = _max_speeds(v, n_net)
+        if not (net_speed <= divergence_speed and ball_speed <= divergence_speed):
+            return DIVERGED
+        substeps = 1
+        if n_balls > 0:
+            substeps = max(1, int(math.ceil((net_speed + ball_speed) * dt / (max_travel * radius))))
+        h = dt / substeps
+        for _sub in range(substeps):
+            for b in range(n_balls):
+                for c in range(3):
+                    before[b, c] = x[n_net + b, c]
+                    before_v[b, c] = v[n_net + b, c]
+            if integrator == EXPLICIT_EULER:
+                step_explicit_euler(x, v, inv_mass, gravity, drag, springs, params, h, work)
+            elif integrator == SYMPLECTIC_EULER:
+                step_symplectic_euler(x, v, inv_mass, gravity, drag, springs, params, h, work)
+            elif integrator == RK4:
+                step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
+            else:
+                stats[CG_ITERATIONS] += step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, h,
+                                                            cg_tolerance, cg_max_iterations, work, coef)
+            if n_balls > 0:
+                _exact_ball_flight(x, v, before, before_v, n_net, gravity, h)
+                _net_box(x, n_net, box)
+            resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, contact, threshold, box)
+            update_entered(x, before, n_net, entered, opening)
+            stats[SUBSTEPS] += 1
+    net_speed, ball_speed = _max_speeds(v, n_net)
+    if not (net_speed <= divergence_speed and ball_speed <= divergence_speed):
+        return DIVERGED
+    return OK
