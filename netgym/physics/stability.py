@@ -42,7 +42,10 @@ def _largest_eigenvalue(product, n: int, free: np.ndarray, iterations: int, rng:
     y = rng.standard_normal((n, 3)) * free[:, None]
     value = 0.0
     for _ in range(iterations):
-        y /= np.linalg.norm(y)
+        norm = np.linalg.norm(y)
+        if norm == 0.0:
+            return 0.0  # the operator is zero (for example no damping at all)
+        y /= norm
         z = product(y)
         value = float(np.sum(y * z))
         y = z

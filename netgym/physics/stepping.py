@@ -24,19 +24,31 @@ SUBSTEPS, CG_ITERATIONS = 0, 1
 
 
 @njit(cache=True)
-def _max_speeds(v, n_net):
-    """(largest net particle speed, largest ball speed); NaN if any velocity is not finite."""
-    net = 0.0
-    ball = 0.0
+def _finite_and_below(v, limit):
+    """True if every velocity is finite and no speed exceeds ``limit``."""
     for k in range(v.shape[0]):
         s2 = v[k, 0] * v[k, 0] + v[k, 1] * v[k, 1] + v[k, 2] * v[k, 2]
-        if not math.isfinite(s2):
-            return math.nan, math.nan
-        if k < n_net:
-            net = max(net, s2)
-        else:
-            ball = max(ball, s2)
-    return math.sqrt(net), math.sqrt(ball)
+        if not s2 <= limit * limit:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _closing_speed(x, v, n_net, radius, dt):
+    """Largest speed of a ball plus that of any net particle that could reach it within dt:
+    the relative speed the substeps must resolve."""
+    worst = 0.0
+    for b in range(n_net, x.shape[0]):
+        ball = math.sqrt(v[b, 0] ** 2 + v[b, 1] ** 2 + v[b, 2] ** 2)
+        near = 0.0
+        for k in range(n_net):
+            speed = math.sqrt(v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
+            reach = radius + (ball + speed) * dt
+            if (abs(x[k, 0] - x[b, 0]) < reach and abs(x[k, 1] - x[b, 1]) < reach
+                    and abs(x[k, 2] - x[b, 2]) < reach):
+                near = max(near, speed)
+        worst = max(worst, ball + near)
+    return worst
 
 
 @njit(cache=True)
@@ -90,9 +102,10 @@ def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, co
             cg_max_iterations, divergence_speed, work, coef, stats):
     """Advance the state by ``n_steps`` steps of ``dt``, in place.
 
-    Balls move on their exact free-flight parabola between contacts. A step is split into equal substeps when a ball could otherwise move more than
-    ``max_travel * radius`` relative to the net in one. After each substep contacts are
-    resolved and the balls' ``entered`` flags updated. Returns OK, or DIVERGED as soon as a
+    Balls move on their exact free-flight parabola between contacts (net particles feel air
+    drag; balls do not). A step is split into equal substeps when a ball could otherwise move
+    more than ``max_travel * radius`` relative to the net particles near it in one. After each
+    substep contacts are resolved and the balls' ``entered`` flags updated. Returns OK, or DIVERGED as soon as a
     velocity is non-finite or above ``divergence_speed`` (the state is then invalid and the
     caller restores its copy).
     """
@@ -101,12 +114,12 @@ def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, co
     before_v = np.empty((n_balls, 3))
     box = np.empty(6)
     for _ in range(n_steps):
-        net_speed, ball_speed = _max_speeds(v, n_net)
-        if not (net_speed <= divergence_speed and ball_speed <= divergence_speed):
+        if not _finite_and_below(v, divergence_speed):
             return DIVERGED
         substeps = 1
         if n_balls > 0:
-            substeps = max(1, int(math.ceil((net_speed + ball_speed) * dt / (max_travel * radius))))
+            closing = _closing_speed(x, v, n_net, radius, dt)
+            substeps = max(1, int(math.ceil(closing * dt / (max_travel * radius))))
         h = dt / substeps
         for _sub in range(substeps):
             for b in range(n_balls):
@@ -128,7 +141,4 @@ def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, co
             resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, contact, threshold, box)
             update_entered(x, before, n_net, entered, opening)
             stats[SUBSTEPS] += 1
-    net_speed, ball_speed = _max_speeds(v, n_net)
-    if not (net_speed <= divergence_speed and ball_speed <= divergence_speed):
-        return DIVERGED
-    return OK
+    return OK if _finite_and_below(v, divergence_speed) else DIVERGED

@@ -1,0 +1,142 @@
+"""Physics against truth: the analytic parabola, the analytic damped oscillator, observed
+convergence orders against a fine reference, and energy behaviour."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from netgym.config import INTEGRATORS
+from netgym.physics import flight, stepping
+from netgym.physics.integrators import workspace
+from netgym.physics.simulator import Simulator
+
+# a small net hung high above the ground: it swings under gravity without touching anything
+LIFTED = {"net.particles": [5, 5, 6], "net.lower": [-1.0, -1.0, 5.0], "net.upper": [1.0, 1.0, 7.5]}
+
+
+def lifted_net(integrator: str, dt: float, **extra: object) -> Simulator:
+    """The small lifted net in its built (unsagged) shape, about to fall and swing."""
+    sim = Simulator("basket", {**LIFTED, "simulation.integrator": integrator, "simulation.dt": dt, **extra})
+    sim.state.x[:] = sim.model.geometry.positions
+    sim.state.v[:] = 0.0
+    return sim
+
+
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_free_flight_matches_the_parabola(integrator: str) -> None:
+    sim = Simulator("basket", {"simulation.integrator": integrator})
+    p0, v0 = np.array([30.0, -20.0, 2.0]), np.array([-3.0, 4.0, 12.0])
+    sim.launch_ball(p0, v0)
+    steps = 1000
+    sim.step(steps)
+    t = steps * sim.config.simulation.dt
+    exact = p0 + v0 * t + 0.5 * np.array([0.0, 0.0, sim.model.gravity]) * t * t
+    assert np.abs(sim.ball_positions[0] - exact).max() < 1e-9
+    assert np.abs(sim.ball_velocities[0] - (v0 + np.array([0, 0, sim.model.gravity]) * t)).max() < 1e-9
+
+
+def test_closed_form_flight_matches_the_parabola_and_bounces() -> None:
+    ground = flight.Ground(radius=0.3, gravity=-9.81, restitution=0.5, friction=0.3, threshold=0.2)
+    p0, v0 = np.array([0.0, 0.0, 2.0]), np.array([5.0, 0.0, 3.0])
+    p, v = flight.advance(p0, v0, 0.4, ground)
+    assert np.allclose(p, p0 + v0 * 0.4 + [0, 0, -0.5 * 9.81 * 0.16], atol=1e-12)
+    # first ground contact, then restitution on the normal and Coulomb friction on the slip
+    t_hit = (3.0 + math.sqrt(9.0 + 2 * 9.81 * 1.7)) / 9.81
+    p, v = flight.advance(p0, v0, t_hit + 1e-12, ground)
+    vz_in = 3.0 - 9.81 * t_hit
+    assert v[2] == pytest.approx(-0.5 * vz_in, rel=1e-6)
+    assert v[0] == pytest.approx(5.0 - 0.3 * 1.5 * -vz_in, rel=1e-6)
+    # a slip smaller than the friction bound stops entirely
+    p, v = flight.advance(p0, [1.0, 0.0, 3.0], t_hit + 1e-12, ground)
+    assert v[0] == 0.0
+
+
+def _oscillator(integrator: int, dt: float, t_end: float, ks: float, kd: float, m: float, amp: float) -> float:
+    """Position offset of a mass on a spring from a fixed anchor after t_end (no contacts)."""
+    rest = 1.0
+    x = np.array([[0.0, 0.0, 50.0], [rest + amp, 0.0, 50.0]])
+    v = np.zeros_like(x)
+    inv_mass = np.array([0.0, 1.0 / m])
+    springs = np.array([[0, 1]])
+    params = np.array([[rest, ks, kd]])
+    work, coef = workspace(2, 1)
+    stats = np.zeros(2)
+    status = stepping.advance(
+        x, v, inv_mass, np.zeros(0, dtype=np.int8), 2, springs, params, np.zeros((0, 2), dtype=np.int64),
+        np.zeros((0, 7)), np.zeros((5, 2)), 0.0, 0.0, 0.0, 0.1, np.array([2, 1, 100.0, 0, 1, -1, 1, -1, 1.0]),
+        integrator, dt, round(t_end / dt), 0.25, 1e-13, 500, 1e6, work, coef, stats)
+    assert status == stepping.OK
+    return x[1, 0] - rest
+
+
+def _oscillator_exact(t: float, ks: float, kd: float, m: float, amp: float) -> float:
+    gamma = kd / (2 * m)
+    wd = math.sqrt(ks / m - gamma * gamma)
+    return math.exp(-gamma * t) * (amp * math.cos(wd * t) + gamma * amp / wd * math.sin(wd * t))
+
+
+@pytest.mark.parametrize("integrator", range(4))
+def test_spring_mass_oscillator_matches_the_analytic_solution(integrator: int) -> None:
+    ks, kd, m, amp, t_end = 400.0, 2.0, 1.0, 0.1, 1.0
+    exact = _oscillator_exact(t_end, ks, kd, m, amp)
+    dts = (1e-3, 5e-4)
+    errors = [abs(_oscillator(integrator, dt, t_end, ks, kd, m, amp) - exact) for dt in dts]
+    omega = math.sqrt(ks / m)
+    if INTEGRATORS[integrator] == "rk4":
+        # global error of order t * omega * (omega dt)^4 / 120 * amp
+        assert errors[1] < t_end * omega * (omega * dts[1]) ** 4 / 120 * amp
+        assert errors[0] / errors[1] == pytest.approx(16.0, rel=0.15)
+    else:
+        # first-order methods: amplitude error of order omega^2 dt t / 2 * amp
+        assert errors[1] < omega ** 2 * dts[1] * t_end / 2 * amp
+        assert errors[0] / errors[1] == pytest.approx(2.0, rel=0.15)
+
+
+def _final_positions(sim: Simulator, t_end: float) -> np.ndarray:
+    sim.step(round(t_end / sim.config.simulation.dt))
+    return sim.state.x.copy()
+
+
+@pytest.mark.parametrize(("integrator", "order", "dts"), [
+    ("explicit_euler", 1, [2e-4, 1e-4, 5e-5, 2.5e-5]),
+    ("symplectic_euler", 1, [2e-4, 1e-4, 5e-5, 2.5e-5]),
+    ("implicit_euler", 1, [2e-4, 1e-4, 5e-5, 2.5e-5]),
+    ("rk4", 4, [4e-4, 2e-4, 1e-4]),
+])
+def test_observed_convergence_order_on_a_swinging_net(integrator: str, order: int, dts: list[float]) -> None:
+    t_end = 0.1
+    reference = _final_positions(lifted_net("rk4", 1e-5), t_end)
+    errors = [np.abs(_final_positions(lifted_net(integrator, dt, **{"simulation.cg_tolerance": 1e-13}), t_end)
+                     - reference).max() for dt in dts]
+    slope = np.polyfit(np.log(dts), np.log(errors), 1)[0]
+    assert abs(slope - order) <= 0.3, (slope, errors)
+
+
+def test_undamped_net_keeps_bounded_energy_with_symplectic_euler() -> None:
+    undamped = {f"springs.{k}.kd": 0.0 for k in ("structural", "shear", "bending")}
+    sim = lifted_net("symplectic_euler", 2.5e-4, **undamped, **{"net.drag": 0.0})
+    e0 = sim.energy().total
+    swing = []
+    for _ in range(200):  # 10 s
+        sim.step(200)
+        swing.append(sim.energy().total - e0)
+    swing = np.array(swing)
+    scale = sim.energy().kinetic + sim.energy().spring + 1.0
+    assert np.abs(swing).max() < 0.02 * scale
+    # no drift: the last second's mean energy error is no worse than the first's plus noise
+    assert abs(swing[-20:].mean()) < abs(swing[:20].mean()) + 0.005 * scale
+
+
+@pytest.mark.parametrize(("integrator", "dt"), [("rk4", 2e-4), ("implicit_euler", 1e-3), ("implicit_euler", 1e-2)])
+def test_damped_net_never_gains_energy(integrator: str, dt: float) -> None:
+    sim = lifted_net(integrator, dt, **{"simulation.cg_tolerance": 1e-12})
+    energy = [sim.energy().total]
+    for _ in range(round(2.0 / dt)):
+        sim.step(1)
+        energy.append(sim.energy().total)
+    gains = np.diff(energy)
+    assert gains.max() <= 1e-9 * abs(energy[0])
+    assert energy[-1] < energy[0]
