@@ -117,7 +117,7 @@ class SimulationConfig:
     cg_tolerance: float = _num(1e-14, 1e-2)
     cg_max_iterations: int = _num(1, 10_000)
     divergence_speed: float = _num(1.0, 1e8, lo_open=True)
-    rest_energy: float = _num(0.0, 10.0, lo_open=True)
+    rest_speed: float = _num(0.0, 1.0, lo_open=True)
 
 
 @dataclass(frozen=True)

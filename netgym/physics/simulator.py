@@ -28,9 +28,9 @@ CHUNK_SECONDS = 0.01          # simulated time between two checks of a throw's o
 REST_WINDOW = 0.1             # s of low kinetic energy that count as "at rest"
 CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
 AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
-RELAX_DT = 0.01               # s, implicit Euler step used to bring the net to rest
+RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
-RELAX_DISPLACEMENT = 1e-3     # m ... by more than this
+RELAX_DISPLACEMENT = 1e-4     # m ... by more than this
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 MAX_LAUNCH_SPEED = 100.0      # m/s
 
@@ -72,6 +72,7 @@ class Energy:
 
 
 _SETTLED: dict[SceneConfig, np.ndarray] = {}
+_MODES: dict[tuple[Any, Any], NetModes] = {}
 
 
 class Simulator:
@@ -80,7 +81,8 @@ class Simulator:
     :param scene: a :class:`SceneConfig`, a built-in scene name or a TOML path.
     :param overrides: dotted config fields to replace, e.g. ``{"simulation.dt": 1e-3}``.
     :param check_stability: refuse an explicit integrator whose ``dt`` is beyond the linear
-        stability limit estimated for this net (raises :class:`UnstableTimeStepError`).
+        stability limit estimated for this net, linearised about its built shape (raises
+        :class:`UnstableTimeStepError`).
     """
 
     def __init__(self, scene: SceneConfig | str | Path = "basket",
@@ -96,9 +98,7 @@ class Simulator:
         self._awake = False
         sim = config.simulation
         self._dt, self._integrator = sim.dt, self.model.integrator_code
-        self.state = State.at_rest(self.model, self._settled_positions())
-        self.modes: NetModes = net_modes(self.state.x, self.model.net_inv_mass,
-                                         self.model.springs, self.model.spring_params, self.model.drag)
+        self.modes = self._net_modes()
         self.stable_dt = stable_dt(self._integrator, self.modes)
         if check_stability and sim.dt > self.stable_dt:
             raise UnstableTimeStepError(
@@ -106,6 +106,7 @@ class Simulator:
                 f"{self.stable_dt:.3g} s of {sim.integrator} on this net (highest frequency "
                 f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
                 f"dt <= {self.stable_dt:.3g} s or integrator = \"implicit_euler\"")
+        self.state = State.at_rest(self.model, self._settled_positions())
         self._rest_state = self.state.copy()
 
     # ------------------------------------------------------------------ state access
@@ -186,26 +187,32 @@ class Simulator:
     def relax(self, max_time: float = 60.0) -> None:
         """Bring the net and the balls in it to their equilibrium: the pause between two throws.
 
-        Dynamic relaxation: implicit Euler at a large step with kinetic damping (all velocities
-        are zeroed whenever the kinetic energy passes a peak), until no body moves more than
-        RELAX_DISPLACEMENT over RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it
-        does not settle within ``max_time``.
+        Dynamic relaxation with the scene's own integrator and ``dt`` (so the result is an
+        equilibrium of exactly the dynamics that follow): all velocities are zeroed whenever the
+        kinetic energy has passed a peak, until no body moves more than RELAX_DISPLACEMENT over
+        RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it does not settle within
+        ``max_time`` simulated seconds.
         """
+        self._relax(self._integrator, self.config.simulation.dt, max_time)
+
+    def _relax(self, integrator: int, dt: float, max_time: float) -> None:
+        steps = max(1, round(CHUNK_SECONDS / dt))
         previous = math.inf
-        steps = round(RELAX_WINDOW / RELAX_DT)
-        for _ in range(int(max_time / RELAX_WINDOW) + 1):
-            start = self.state.x.copy()
-            for _ in range(steps):
-                self._advance(1, IMPLICIT_EULER, RELAX_DT)
-                kinetic = self.energy().kinetic
-                if kinetic < previous:
-                    self.state.v[:] = 0.0
-                    kinetic = 0.0
-                previous = kinetic
-            if float(np.abs(self.state.x - start).max(initial=0.0)) < RELAX_DISPLACEMENT:
+        started = self.state.time
+        window_start, window_time = self.state.x.copy(), self.state.time
+        while self.state.time - started < max_time:
+            self._advance(steps, integrator, dt)
+            kinetic = self.energy().kinetic
+            if kinetic < previous:
                 self.state.v[:] = 0.0
-                self._awake = False
-                return
+                kinetic = 0.0
+            previous = kinetic
+            if self.state.time - window_time >= RELAX_WINDOW - 1e-12:
+                if float(np.abs(self.state.x - window_start).max(initial=0.0)) < RELAX_DISPLACEMENT:
+                    self.state.v[:] = 0.0
+                    self._awake = False
+                    return
+                window_start, window_time = self.state.x.copy(), self.state.time
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
     def _advance(self, n_steps: int, integrator: int, dt: float) -> None:
@@ -227,10 +234,25 @@ class Simulator:
                 f"{self.stable_dt:.3g} s) or integrator = \"implicit_euler\"")
         s.time += n_steps * dt
 
+    def _net_modes(self) -> NetModes:
+        """Fastest mode of the net linearised about its built shape (cached per net and springs)."""
+        key = (self.config.net, self.config.springs)
+        if key not in _MODES:
+            m = self.model
+            _MODES[key] = net_modes(m.geometry.positions, m.net_inv_mass, m.springs, m.spring_params, m.drag)
+        return _MODES[key]
+
     def _settled_positions(self) -> np.ndarray:
+        """The net at rest under gravity (cached per scene config)."""
         key = self.config
         if key not in _SETTLED:
-            self.relax()
+            try:
+                self.relax()
+            except SimulationDivergedError:
+                # an unstable dt (allowed with check_stability=False) cannot hold the net still:
+                # start it from the equilibrium found with implicit Euler instead
+                self.state = State.at_rest(self.model)
+                self._relax(IMPLICIT_EULER, RELAX_IMPLICIT_DT, 60.0)
             _SETTLED[key] = self.state.x.copy()
         return _SETTLED[key]
 
@@ -316,16 +338,16 @@ class Simulator:
                 if reason is not None:
                     break
                 self._awake = True
-            else:
-                self._advance(min(chunk, max(1, round((deadline - s.time) / sim.dt))), self._integrator, sim.dt)
-            if s.time >= deadline - 1e-12:
+            elif round((deadline - s.time) / sim.dt) > 0:
+                self._advance(min(chunk, round((deadline - s.time) / sim.dt)), self._integrator, sim.dt)
+            if deadline - s.time < 0.5 * sim.dt:
                 reason = "time_limit"
                 break
             if not fast:
                 continue
-            kinetic = self.energy().kinetic
-            rest_since = (rest_since if rest_since is not None else s.time) if kinetic < sim.rest_energy else None
-            reason = self._decided(row, ground, reference_energy, kinetic, rest_since)
+            still = float(np.abs(s.v).max(initial=0.0)) < sim.rest_speed
+            rest_since = (s.time if rest_since is None else rest_since) if still else None
+            reason = self._decided(row, ground, reference_energy, rest_since)
             if reason is not None:
                 break
             others = np.arange(s.x.shape[0]) != row
@@ -355,7 +377,7 @@ class Simulator:
             s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, ground)
             stepping.update_entered(s.x, before, self.model.n_net, s.entered, self.model.opening)
             s.time += tau
-            if s.time >= deadline - 1e-12:
+            if deadline - s.time < 0.5 * self.config.simulation.dt:
                 return "time_limit"
 
     def _potential_without(self, row: int) -> float:
@@ -363,7 +385,7 @@ class Simulator:
         s = self.state
         return e.spring + e.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
 
-    def _decided(self, row: int, ground: flight.Ground, reference_energy: float, kinetic: float,
+    def _decided(self, row: int, ground: flight.Ground, reference_energy: float,
                  rest_since: float | None) -> str | None:
         s, m = self.state, self.model
         lo, hi = self._region(row, AWAKE_MARGIN)
@@ -373,7 +395,7 @@ class Simulator:
             return "flies_away"
         if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
             return "at_rest"
-        free = kinetic + max(0.0, self._potential_without(row) - reference_energy)
+        free = self.energy().kinetic + max(0.0, self._potential_without(row) - reference_energy)
         reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
         if reach < self._opening_lowest_z():
             return "cannot_reach_opening"

@@ -1,0 +1,128 @@
+"""Whole throws: property tests over random launches, determinism, the fast path against the
+full simulation, and the simulator's input checks."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from netgym.launch import Thrower, action_to_velocity, sample_thrower, velocity_to_action
+from netgym.physics.simulator import Simulator
+
+_SIMS: dict[str, Simulator] = {}
+
+
+def _sim(scene: str) -> Simulator:
+    """One simulator per scene for the property tests, reset before each use."""
+    if scene not in _SIMS:
+        _SIMS[scene] = Simulator(scene)
+    _SIMS[scene].reset()
+    return _SIMS[scene]
+
+
+def _launch(sim: Simulator, place: tuple[float, float, float], action: tuple[float, float, float]):
+    cfg = sim.config.throw
+    rng = np.random.default_rng(0)
+    base = sample_thrower(cfg, sim.model.geometry.opening, rng)
+    lerp = [lo + u * (hi - lo) for u, (lo, hi) in zip(place, (cfg.distance, cfg.bearing, cfg.height))]
+    thrower = Thrower(distance=lerp[0], bearing=lerp[1], height=lerp[2], centre=base.centre)
+    return thrower.position, action_to_velocity(np.array(action), thrower, cfg)
+
+
+unit = st.floats(0.0, 1.0)
+signed = st.floats(-1.0, 1.0)
+
+
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+@given(place=st.tuples(unit, unit, unit), action=st.tuples(signed, signed, signed))
+def test_random_throws_stay_finite_and_consistent(scene: str, place, action) -> None:
+    sim = _sim(scene)
+    position, velocity = _launch(sim, place, action)
+    result = sim.throw(position, velocity)
+    assert np.all(np.isfinite(sim.state.x)) and np.all(np.isfinite(sim.state.v))
+    assert np.all(np.isfinite(result.final_position))
+    # a ball that came in through the opening and did not leave through it is inside the net
+    assert result.captured == result.entered
+    assert result.time <= sim.config.simulation.time_limit + 0.5 * sim.config.simulation.dt
+    assert sim.n_balls == int(result.captured)
+
+
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+@given(place=st.tuples(unit, unit, unit), action=st.tuples(signed, signed, signed))
+def test_outcomes_are_deterministic(scene: str, place, action) -> None:
+    first = _sim(scene)
+    position, velocity = _launch(first, place, action)
+    a = first.throw(position, velocity)
+    b = _sim(scene).throw(position, velocity)
+    assert a.captured == b.captured and a.reason == b.reason and a.substeps == b.substeps
+    assert np.array_equal(a.final_position, b.final_position)
+
+
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+def test_fast_path_agrees_with_full_simulation(scene: str) -> None:
+    """A handful here; the environment's tests compare 1000 throws."""
+    sim = _sim(scene)
+    rng = np.random.default_rng(7)
+    agree, captured = 0, 0
+    n = 12
+    for _ in range(n):
+        position, velocity = _launch(sim, tuple(rng.uniform(0, 1, 3)), tuple(rng.uniform(-1, 1, 3)))
+        sim.reset()
+        fast = sim.throw(position, velocity)
+        sim.reset()
+        full = sim.throw(position, velocity, fast=False)
+        agree += fast.captured == full.captured
+        captured += full.captured
+        assert full.reason == "time_limit"
+    assert agree == n
+
+
+def test_action_and_velocity_are_inverse() -> None:
+    sim = _sim("basket")
+    cfg = sim.config.throw
+    thrower = sample_thrower(cfg, sim.model.geometry.opening, np.random.default_rng(3))
+    action = np.array([0.3, -0.7, 0.2])
+    velocity = action_to_velocity(action, thrower, cfg)
+    assert np.allclose(velocity_to_action(velocity, thrower, cfg), action)
+    speed = np.linalg.norm(velocity)
+    assert cfg.speed[0] <= speed <= cfg.speed[1]
+
+
+def test_a_throw_away_from_the_net_is_decided_in_closed_form() -> None:
+    sim = _sim("basket")
+    result = sim.throw([5.0, 0.0, 1.8], [8.0, 0.0, 5.0])
+    assert not result.captured and result.reason == "flies_away" and result.substeps == 0
+    assert sim.n_balls == 0
+
+
+def test_a_lob_into_the_basket_is_captured_early_and_stays() -> None:
+    sim = _sim("basket")
+    result = sim.throw([5.0, 0.0, 1.8], [-5.0, 0.0, 6.1])
+    assert result.captured and result.reason in ("cannot_reach_opening", "at_rest")
+    assert result.time < 0.5 * sim.config.simulation.time_limit
+    assert sim.n_balls == 1
+    second = sim.throw([0.0, 5.0, 1.8], [0.0, -5.0, 6.1])  # lands on the first ball
+    assert second.captured and sim.n_balls == 2
+
+
+@pytest.mark.parametrize(("position", "velocity", "message"), [
+    ([0.0, 0.0], [0.0, 0.0, 0.0], r"position must have shape \(3,\)"),
+    ([0.0, 0.0, float("nan")], [0.0, 0.0, 0.0], "position must be finite"),
+    ([5.0, 0.0, 0.1], [0.0, 0.0, 0.0], "below the ground"),
+    ([5.0, 0.0, 2.0], [0.0, 0.0, float("inf")], "velocity must be finite"),
+    ([5.0, 0.0, 2.0], [0.0, 150.0, 0.0], "speed 150 m/s; allowed: at most 100 m/s"),
+])
+def test_bad_launch_raises_and_leaves_the_state_alone(position, velocity, message) -> None:
+    sim = _sim("basket")
+    before = sim.state.copy()
+    with pytest.raises(ValueError, match=message):
+        sim.throw(position, velocity)
+    assert sim.n_balls == 0 and np.array_equal(sim.state.x, before.x)
+
+
+def test_remove_ball_checks_its_index() -> None:
+    sim = _sim("basket")
+    with pytest.raises(IndexError, match="ball index 0 out of range"):
+        sim.remove_ball(0)
