@@ -12,22 +12,26 @@ import math
 from numba import njit
 
 
+@njit(cache=True, inline="always")
+def spring_axis(x, i, j):
+    """Length of the spring i-j and its unit direction from j to i (zero if degenerate)."""
+    dx = x[i, 0] - x[j, 0]
+    dy = x[i, 1] - x[j, 1]
+    dz = x[i, 2] - x[j, 2]
+    length = math.sqrt(dx * dx + dy * dy + dz * dz)
+    inv = 1.0 / length if length > 1e-12 else 0.0
+    return length, dx * inv, dy * inv, dz * inv
+
+
 @njit(cache=True)
 def spring_forces(x, v, springs, params, f):
     """Add every spring's force to ``f`` (n, 3)."""
     for s in range(springs.shape[0]):
         i = springs[s, 0]
         j = springs[s, 1]
-        dx = x[i, 0] - x[j, 0]
-        dy = x[i, 1] - x[j, 1]
-        dz = x[i, 2] - x[j, 2]
-        length = math.sqrt(dx * dx + dy * dy + dz * dz)
-        if length < 1e-12:
+        length, ux, uy, uz = spring_axis(x, i, j)
+        if length <= 1e-12:
             continue
-        inv = 1.0 / length
-        ux = dx * inv
-        uy = dy * inv
-        uz = dz * inv
         closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
         mag = -params[s, 1] * (length - params[s, 0]) - params[s, 2] * closing
         f[i, 0] += mag * ux

@@ -19,12 +19,10 @@ shape (n_springs, 5) as scratch space, so a step allocates nothing.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-from netgym.physics.forces import accelerations, spring_forces
+from netgym.physics.forces import accelerations, spring_axis, spring_forces
 
 EXPLICIT_EULER, SYMPLECTIC_EULER, RK4, IMPLICIT_EULER = range(4)
 WORK_SLOTS = 7
@@ -36,25 +34,19 @@ def workspace(n_bodies: int, n_springs: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 @njit(cache=True)
-def step_explicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work):
-    """x(t+dt) = x + dt v, v(t+dt) = v + dt a(x, v)."""
+def step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplectic):
+    """One Euler step from a(x, v). Explicit: x += dt v(t), then v += dt a. Symplectic
+    (semi-implicit): v += dt a first, then x += dt v(t+dt)."""
     a = work[0]
     accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
     for k in range(x.shape[0]):
         for c in range(3):
-            x[k, c] += dt * v[k, c]
-            v[k, c] += dt * a[k, c]
-
-
-@njit(cache=True)
-def step_symplectic_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work):
-    """v(t+dt) = v + dt a(x, v), then x(t+dt) = x + dt v(t+dt)."""
-    a = work[0]
-    accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
-    for k in range(x.shape[0]):
-        for c in range(3):
-            v[k, c] += dt * a[k, c]
-            x[k, c] += dt * v[k, c]
+            if symplectic:
+                v[k, c] += dt * a[k, c]
+                x[k, c] += dt * v[k, c]
+            else:
+                x[k, c] += dt * v[k, c]
+                v[k, c] += dt * a[k, c]
 
 
 @njit(cache=True)
@@ -151,14 +143,9 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tole
     for s in range(springs.shape[0]):
         i = springs[s, 0]
         j = springs[s, 1]
-        dx = x[i, 0] - x[j, 0]
-        dy = x[i, 1] - x[j, 1]
-        dz = x[i, 2] - x[j, 2]
-        length = math.sqrt(dx * dx + dy * dy + dz * dz)
-        inv = 1.0 / length if length > 1e-12 else 0.0
-        ux, uy, uz = dx * inv, dy * inv, dz * inv
+        length, ux, uy, uz = spring_axis(x, i, j)
         ks, kd = params[s, 1], params[s, 2]
-        stretch = 1.0 - params[s, 0] * inv if length > 1e-12 else 0.0
+        stretch = 1.0 - params[s, 0] / length if length > 1e-12 else 0.0
         iso = dt * dt * ks * max(stretch, 0.0)
         axial = dt * dt * ks + dt * kd - iso
         coef[s, 0], coef[s, 1], coef[s, 2], coef[s, 3], coef[s, 4] = ux, uy, uz, iso, axial

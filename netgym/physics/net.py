@@ -129,34 +129,19 @@ def build_net(cfg: NetConfig, keep_fixed_pairs: bool = False) -> NetGeometry:
     )
 
 
-def _box_corner(lower: np.ndarray, upper: np.ndarray, sides: tuple[int, int, int]) -> np.ndarray:
-    return np.where(np.array(sides) == 1, upper, lower)
-
-
 def _poles(cfg: NetConfig, lower: np.ndarray, upper: np.ndarray, open_axis: int, open_side: int) -> np.ndarray:
     """Fixed box edges above the ground, as capsule axes (a, b): the rim / frame and the side
     edges when they are fixed."""
     u, w = [a for a in range(3) if a != open_axis]
-    edges = []
-    # the four edges of the open face
-    for along, across in ((u, w), (w, u)):
-        for s in (0, 1):
-            a_sides, b_sides = [0, 0, 0], [0, 0, 0]
-            for sides in (a_sides, b_sides):
-                sides[open_axis], sides[across] = open_side, s
-            b_sides[along] = 1
-            edges.append((tuple(a_sides), tuple(b_sides)))
+    # an edge runs along one axis from lower to upper; the other two axes sit at a side (0 / 1)
+    edges = [(along, {open_axis: open_side, across: s}) for along, across in ((u, w), (w, u)) for s in (0, 1)]
     if cfg.fix_side_edges:
-        for su in (0, 1):
-            for sw in (0, 1):
-                a_sides, b_sides = [0, 0, 0], [0, 0, 0]
-                for sides in (a_sides, b_sides):
-                    sides[u], sides[w] = su, sw
-                b_sides[open_axis] = 1
-                edges.append((tuple(a_sides), tuple(b_sides)))
+        edges += [(open_axis, {u: su, w: sw}) for su in (0, 1) for sw in (0, 1)]
     poles = []
-    for a_sides, b_sides in edges:
-        a, b = _box_corner(lower, upper, a_sides), _box_corner(lower, upper, b_sides)
+    for along, sides in edges:
+        a = np.array([upper[k] if sides.get(k, 0) else lower[k] for k in range(3)])
+        b = a.copy()
+        b[along] = upper[along]
         if max(a[2], b[2]) > 0.0:  # an edge lying on the ground is no pole
             poles.append(np.concatenate([a, b]))
     return np.array(poles, dtype=np.float64).reshape(-1, 6)

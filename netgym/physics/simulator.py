@@ -165,7 +165,6 @@ class Simulator:
         s.v = np.vstack([s.v, v])
         s.inv_mass = np.append(s.inv_mass, 1.0 / self.model.ball_mass)
         s.entered = np.append(s.entered, np.int8(self._inside_box(p)))
-        self._work, self._coef = workspace(s.x.shape[0], self.model.n_springs)
         return self.n_balls - 1
 
     def remove_ball(self, index: int) -> None:
@@ -175,7 +174,6 @@ class Simulator:
         s, row = self.state, self.model.n_net + index
         s.x, s.v = np.delete(s.x, row, axis=0), np.delete(s.v, row, axis=0)
         s.inv_mass, s.entered = np.delete(s.inv_mass, row), np.delete(s.entered, index)
-        self._work, self._coef = workspace(s.x.shape[0], self.model.n_springs)
         self._awake = True
 
     # ------------------------------------------------------------------ stepping
@@ -218,6 +216,8 @@ class Simulator:
     def _advance(self, n_steps: int, integrator: int, dt: float) -> None:
         m, s = self.model, self.state
         sim = self.config.simulation
+        if self._work.shape[1] != s.x.shape[0]:
+            self._work, self._coef = workspace(s.x.shape[0], m.n_springs)
         before = s.copy()
         status = stepping.advance(
             s.x, s.v, s.inv_mass, s.entered, m.n_net, m.springs, m.spring_params, m.segments,
@@ -317,7 +317,6 @@ class Simulator:
             result = self._run_throw(ball, fast)
         except SimulationDivergedError:
             self.state.restore(start)
-            self._work, self._coef = workspace(start.x.shape[0], self.model.n_springs)
             raise
         if not result.captured:
             self.remove_ball(ball)

@@ -12,10 +12,9 @@ from netgym.physics.integrators import (
     EXPLICIT_EULER,
     RK4,
     SYMPLECTIC_EULER,
-    step_explicit_euler,
+    step_euler,
     step_implicit_euler,
     step_rk4,
-    step_symplectic_euler,
 )
 
 OK, DIVERGED = 0, 1
@@ -126,10 +125,9 @@ def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, co
                 for c in range(3):
                     before[b, c] = x[n_net + b, c]
                     before_v[b, c] = v[n_net + b, c]
-            if integrator == EXPLICIT_EULER:
-                step_explicit_euler(x, v, inv_mass, gravity, drag, springs, params, h, work)
-            elif integrator == SYMPLECTIC_EULER:
-                step_symplectic_euler(x, v, inv_mass, gravity, drag, springs, params, h, work)
+            if integrator == EXPLICIT_EULER or integrator == SYMPLECTIC_EULER:
+                step_euler(x, v, inv_mass, gravity, drag, springs, params, h, work,
+                           integrator == SYMPLECTIC_EULER)
             elif integrator == RK4:
                 step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
             else:

@@ -1,0 +1,29 @@
+"""Smoke tests of the scripts' --quick modes: they run end to end and print their figures."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _run(*args: str) -> str:
+    done = subprocess.run([sys.executable, *args], cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
+    out = _run("scripts/bench_sim.py", "--quick")
+    rows = [line for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
+    assert len(rows) == 2 * 4 * 2  # scenes x integrators x workloads
+    for line in rows:
+        substeps_per_s = float(line.split("|")[5].replace(",", ""))
+        assert substeps_per_s > 0
+
+
+def test_python_m_netgym_reports_a_throw() -> None:
+    out = _run("-m", "netgym")
+    assert "CAPTURED" in out and "substeps" in out
