@@ -30,7 +30,7 @@ CLEARANCE = 0.02              # m: closer than this to anything, a ball is simul
 AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
-RELAX_DISPLACEMENT = 1e-4     # m ... by more than this
+RELAX_DISPLACEMENT = 1e-3     # m ... by more than this (1 cm/s: slow creep of balls on a sloped net is at rest)
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 MAX_LAUNCH_SPEED = 100.0      # m/s
 
