@@ -10,6 +10,7 @@ integrates everything from launch to the time limit instead, as a reference.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
@@ -70,6 +71,9 @@ class Energy:
         """Sum of the three."""
         return self.kinetic + self.spring + self.gravity
 
+
+Plan = Generator[tuple[int, int, float], None, Any]
+"""A simulation plan: yields (n_steps, integrator code, dt) requests, returns its result."""
 
 _SETTLED: dict[SceneConfig, np.ndarray] = {}
 _MODES: dict[tuple[Any, Any], NetModes] = {}
@@ -191,15 +195,18 @@ class Simulator:
         RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it does not settle within
         ``max_time`` simulated seconds.
         """
-        self._relax(self._integrator, self.config.simulation.dt, max_time)
+        self.run(self.relax_plan(max_time))
 
-    def _relax(self, integrator: int, dt: float, max_time: float) -> None:
+    def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None) -> Plan:
+        """:meth:`relax` as a plan (see :meth:`run`)."""
+        integrator = self._integrator if integrator is None else integrator
+        dt = self._dt if dt is None else dt
         steps = max(1, round(CHUNK_SECONDS / dt))
         previous = math.inf
         started = self.state.time
         window_start, window_time = self.state.x.copy(), self.state.time
         while self.state.time - started < max_time:
-            self._advance(steps, integrator, dt)
+            yield steps, integrator, dt
             kinetic = self.energy().kinetic
             if kinetic < previous:
                 self.state.v[:] = 0.0
@@ -213,24 +220,58 @@ class Simulator:
                 window_start, window_time = self.state.x.copy(), self.state.time
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
+    def run(self, plan: Plan, observer: Callable[["Simulator"], None] | None = None) -> Any:
+        """Carry out a plan on this simulator alone and return its result.
+
+        A plan (from :meth:`throw_plan` or :meth:`relax_plan`) is a generator that yields
+        ``(n_steps, integrator, dt)`` requests to integrate (``n_steps == 0``: time moved in
+        closed form) and holds all the decisions; the driver only integrates, which lets a
+        vector environment integrate many simulators' requests in one parallel call.
+        ``observer(sim)`` is called after every request, for example to record frames.
+        """
+        try:
+            request = next(plan)
+            while True:
+                n_steps, integrator, dt = request
+                try:
+                    if n_steps:
+                        self._advance(n_steps, integrator, dt)
+                except SimulationDivergedError as error:
+                    request = plan.throw(error)
+                    continue
+                if observer is not None:
+                    observer(self)
+                request = next(plan)
+        except StopIteration as stop:
+            return stop.value
+
     def _advance(self, n_steps: int, integrator: int, dt: float) -> None:
         m, s = self.model, self.state
         sim = self.config.simulation
-        if self._work.shape[1] != s.x.shape[0]:
-            self._work, self._coef = workspace(s.x.shape[0], m.n_springs)
-        before = s.copy()
+        before = self.begin_advance()
         status = stepping.advance(
             s.x, s.v, s.inv_mass, s.entered, m.n_net, m.springs, m.spring_params, m.segments,
             m.poles, m.contact, m.restitution_threshold, m.gravity, m.drag, m.ball_radius, m.opening,
             integrator, dt, n_steps, sim.max_ball_travel, sim.cg_tolerance, sim.cg_max_iterations,
             sim.divergence_speed, self._work, self._coef, self._stats)
+        self.end_advance(status, before, n_steps, integrator, dt)
+
+    def begin_advance(self) -> State:
+        """Prepare scratch space for the current state; returns a copy to restore on failure."""
+        if self._work.shape[1] != self.state.x.shape[0]:
+            self._work, self._coef = workspace(self.state.x.shape[0], self.model.n_springs)
+        return self.state.copy()
+
+    def end_advance(self, status: int, before: State, n_steps: int, integrator: int, dt: float) -> None:
+        """Book the time of an integration, or restore ``before`` and raise if it diverged."""
+        s = self.state
         if status != stepping.OK:
             s.restore(before)
             raise SimulationDivergedError(
                 f"{INTEGRATORS[integrator]} at dt = {dt:g} s diverged (a speed exceeded "
-                f"{sim.divergence_speed:g} m/s or became non-finite) within {n_steps} steps from "
-                f"t = {before.time:g} s; the state was restored. Use a smaller simulation.dt "
-                f"(linear stability limit of {INTEGRATORS[self._integrator]} here: "
+                f"{self.config.simulation.divergence_speed:g} m/s or became non-finite) within "
+                f"{n_steps} steps from t = {before.time:g} s; the state was restored. Use a smaller "
+                f"simulation.dt (linear stability limit of {INTEGRATORS[self._integrator]} here: "
                 f"{self.stable_dt:.3g} s) or integrator = \"implicit_euler\"")
         s.time += n_steps * dt
 
@@ -252,7 +293,7 @@ class Simulator:
                 # an unstable dt (allowed with check_stability=False) cannot hold the net still:
                 # start it from the equilibrium found with implicit Euler instead
                 self.state = State.at_rest(self.model)
-                self._relax(IMPLICIT_EULER, RELAX_IMPLICIT_DT, 60.0)
+                self.run(self.relax_plan(60.0, IMPLICIT_EULER, RELAX_IMPLICIT_DT))
             _SETTLED[key] = self.state.x.copy()
         return _SETTLED[key]
 
@@ -302,19 +343,27 @@ class Simulator:
         return pts.min(axis=0) - grow, pts.max(axis=0) + grow
 
     # ------------------------------------------------------------------ throws
-    def throw(self, position: Any, velocity: Any, fast: bool = True) -> ThrowResult:
+    def throw(self, position: Any, velocity: Any, fast: bool = True,
+              observer: Callable[["Simulator"], None] | None = None, frame_dt: float | None = None) -> ThrowResult:
         """Launch a ball and simulate until its outcome is decided.
 
         The net is first brought to rest if it still moves. A captured ball stays in the scene;
         a missed one is removed. With ``fast=False`` everything is integrated from launch to the
-        time limit (the reference the fast path is tested against).
+        time limit (the reference the fast path is tested against). ``observer(sim)`` is called
+        at least every ``frame_dt`` simulated seconds (for recording frames).
         """
+        return self.run(self.throw_plan(position, velocity, fast, frame_dt), observer)
+
+    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frame_dt: float | None = None) -> Plan:
+        """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
+        _vector(position, "position")  # fail on bad input before any work
+        _vector(velocity, "velocity")
         if self._awake:
-            self.relax()
+            yield from self.relax_plan()
         start = self.state.copy()
         ball = self.launch_ball(position, velocity)
         try:
-            result = self._run_throw(ball, fast)
+            result = yield from self._throw_steps(ball, fast, frame_dt)
         except SimulationDivergedError:
             self.state.restore(start)
             raise
@@ -322,23 +371,23 @@ class Simulator:
             self.remove_ball(ball)
         return result
 
-    def _run_throw(self, ball: int, fast: bool) -> ThrowResult:
+    def _throw_steps(self, ball: int, fast: bool, frame_dt: float | None) -> Plan:
         m, s, sim = self.model, self.state, self.config.simulation
         row = m.n_net + ball
         t0, substeps0 = s.time, self.substeps
         deadline = t0 + sim.time_limit
-        chunk = max(1, round(CHUNK_SECONDS / sim.dt))
+        chunk = max(1, round(min(CHUNK_SECONDS, frame_dt or math.inf) / sim.dt))
         ground = self._ground()
         reference_energy = self._potential_without(row)
         rest_since: float | None = None
         while True:
             if fast and not self._awake:
-                reason = self._fly(row, deadline, ground)
+                reason = yield from self._fly(row, deadline, ground, frame_dt)
                 if reason is not None:
                     break
                 self._awake = True
             elif round((deadline - s.time) / sim.dt) > 0:
-                self._advance(min(chunk, round((deadline - s.time) / sim.dt)), self._integrator, sim.dt)
+                yield min(chunk, round((deadline - s.time) / sim.dt)), self._integrator, sim.dt
             if deadline - s.time < 0.5 * sim.dt:
                 reason = "time_limit"
                 break
@@ -358,7 +407,7 @@ class Simulator:
                            final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
                            time=s.time - t0, substeps=self.substeps - substeps0, reason=reason)
 
-    def _fly(self, row: int, deadline: float, ground: flight.Ground) -> str | None:
+    def _fly(self, row: int, deadline: float, ground: flight.Ground, frame_dt: float | None) -> Plan:
         """Move the ball in closed form while it is clear of everything. Returns a decision
         reason, or None when the ball came close enough to need simulating."""
         s, g = self.state, abs(self.model.gravity)
@@ -371,11 +420,13 @@ class Simulator:
                 return None
             speed = float(np.linalg.norm(s.v[row]))
             tau = (gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g))
-            tau = min(tau, deadline - s.time)
+            tau = min(tau, deadline - s.time, frame_dt or math.inf)
             before = s.x[self.model.n_net:].copy()
             s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, ground)
             stepping.update_entered(s.x, before, self.model.n_net, s.entered, self.model.opening)
             s.time += tau
+            if frame_dt is not None:
+                yield 0, self._integrator, self._dt
             if deadline - s.time < 0.5 * self.config.simulation.dt:
                 return "time_limit"
 
