@@ -55,20 +55,22 @@ def sample_thrower(cfg: ThrowConfig, opening: Opening, rng: np.random.Generator)
                    height=float(rng.uniform(*cfg.height)), centre=(float(centre[0]), float(centre[1])))
 
 
-def _scale(unit: float, bounds: tuple[float, float]) -> float:
+def to_range(unit: float, bounds: tuple[float, float]) -> float:
+    """Map ``unit`` in [-1, 1] linearly onto ``bounds``."""
     return bounds[0] + 0.5 * (unit + 1.0) * (bounds[1] - bounds[0])
 
 
-def _unscale(value: float, bounds: tuple[float, float]) -> float:
+def from_range(value: float, bounds: tuple[float, float]) -> float:
+    """Inverse of :func:`to_range` (0 for an empty range)."""
     span = bounds[1] - bounds[0]
     return 0.0 if span == 0.0 else 2.0 * (value - bounds[0]) / span - 1.0
 
 
 def action_to_velocity(action: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:
     """Launch velocity (m/s) of an action in [-1, 1]^3 = (speed, elevation, azimuth offset)."""
-    speed = _scale(float(action[0]), cfg.speed)
-    elevation = math.radians(_scale(float(action[1]), cfg.elevation))
-    azimuth = thrower.facing + math.radians(_scale(float(action[2]), cfg.azimuth))
+    speed = to_range(float(action[0]), cfg.speed)
+    elevation = math.radians(to_range(float(action[1]), cfg.elevation))
+    azimuth = thrower.facing + math.radians(to_range(float(action[2]), cfg.azimuth))
     return speed * np.array([math.cos(elevation) * math.cos(azimuth),
                              math.cos(elevation) * math.sin(azimuth), math.sin(elevation)])
 
@@ -80,4 +82,28 @@ def velocity_to_action(velocity: np.ndarray, thrower: Thrower, cfg: ThrowConfig)
     elevation = math.degrees(math.asin(velocity[2] / speed)) if speed > 0 else 0.0
     heading = math.atan2(velocity[1], velocity[0]) - thrower.facing
     offset = math.degrees(math.atan2(math.sin(heading), math.cos(heading)))
-    return np.array([_unscale(speed, cfg.speed), _unscale(elevation, cfg.elevation), _unscale(offset, cfg.azimuth)])
+    return np.array([from_range(speed, cfg.speed), from_range(elevation, cfg.elevation), from_range(offset, cfg.azimuth)])
+
+
+def _distance_to_rectangle(points: np.ndarray, opening: Opening) -> np.ndarray:
+    """Distances from points (k, 3) to the opening rectangle."""
+    nearest = points.copy()
+    nearest[:, opening.axis] = opening.plane
+    for axis, lo, hi in zip(opening.tangent_axes, opening.tangent_lower, opening.tangent_upper):
+        nearest[:, axis] = np.clip(points[:, axis], lo, hi)
+    return np.linalg.norm(points - nearest, axis=1)
+
+
+def opening_miss_distance(position: np.ndarray, velocity: np.ndarray, opening: Opening, gravity: float,
+                          radius: float, samples: int = 256) -> float:
+    """Closest distance between the ball's launch parabola (until it reaches the ground) and
+    the opening rectangle: how close a throw came, ignoring the net and poles."""
+    p, v = np.asarray(position, dtype=float), np.asarray(velocity, dtype=float)
+    a, b, c = 0.5 * gravity, v[2], p[2] - radius
+    if a < 0.0:
+        landing = (-b - math.sqrt(max(b * b - 4.0 * a * c, 0.0))) / (2.0 * a)
+    else:
+        landing = 10.0
+    t = np.linspace(0.0, max(landing, 0.0), samples)[:, None]
+    points = p + v * t + np.array([0.0, 0.0, 0.5 * gravity]) * t * t
+    return float(_distance_to_rectangle(points, opening).min())

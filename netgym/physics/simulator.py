@@ -26,7 +26,8 @@ from netgym.physics.model import BALL_GROUND, Model, State
 from netgym.physics.stability import NetModes, net_modes, stable_dt
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a throw's outcome
-REST_WINDOW = 0.1             # s of low kinetic energy that count as "at rest"
+REST_WINDOW = 0.1             # s during which a ball and its surroundings must stay slow to be "at rest"
+REST_REACH = 0.2              # m around a ball within which moving bodies keep it from being at rest
 CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
 AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
@@ -97,7 +98,7 @@ class Simulator:
         self.config = config
         self.model = Model.from_config(config)
         self.state = State.at_rest(self.model)
-        self._stats = np.zeros(2)
+        self.stats = np.zeros(2)  # counters: integration substeps, CG iterations
         self._work, self._coef = workspace(self.model.n_net, self.model.n_springs)
         self._awake = False
         sim = config.simulation
@@ -132,12 +133,12 @@ class Simulator:
     @property
     def substeps(self) -> int:
         """Integration substeps taken since construction."""
-        return int(self._stats[stepping.SUBSTEPS])
+        return int(self.stats[stepping.SUBSTEPS])
 
     @property
     def cg_iterations(self) -> int:
         """Conjugate-gradient iterations taken by implicit Euler since construction."""
-        return int(self._stats[stepping.CG_ITERATIONS])
+        return int(self.stats[stepping.CG_ITERATIONS])
 
     def energy(self) -> Energy:
         """Energy of the current state."""
@@ -253,7 +254,7 @@ class Simulator:
             s.x, s.v, s.inv_mass, s.entered, m.n_net, m.springs, m.spring_params, m.segments,
             m.poles, m.contact, m.restitution_threshold, m.gravity, m.drag, m.ball_radius, m.opening,
             integrator, dt, n_steps, sim.max_ball_travel, sim.cg_tolerance, sim.cg_max_iterations,
-            sim.divergence_speed, self._work, self._coef, self._stats)
+            sim.divergence_speed, self._work, self._coef, self.stats)
         self.end_advance(status, before, n_steps, integrator, dt)
 
     def begin_advance(self) -> State:
@@ -335,6 +336,13 @@ class Simulator:
             gap = min(gap, float(np.sqrt(np.min(np.sum((others - c) ** 2, axis=1)))) - 2.0 * r)
         return gap
 
+    def _local_speed(self, row: int) -> float:
+        """Largest speed of the ball in ``row`` and of the bodies that could touch it soon
+        (within REST_REACH of its surface): what decides whether it has come to rest."""
+        x, v = self.state.x, self.state.v
+        near = np.linalg.norm(x - x[row], axis=1) < 2.0 * self.model.ball_radius + REST_REACH
+        return float(np.abs(v[near]).max(initial=0.0))
+
     def _region(self, row: int, margin: float) -> tuple[np.ndarray, np.ndarray]:
         """Bounding box of the net, poles and the other balls, grown by the ball radius + margin."""
         m = self.model
@@ -393,7 +401,7 @@ class Simulator:
                 break
             if not fast:
                 continue
-            still = float(np.abs(s.v).max(initial=0.0)) < sim.rest_speed
+            still = self._local_speed(row) < sim.rest_speed
             rest_since = (s.time if rest_since is None else rest_since) if still else None
             reason = self._decided(row, ground, reference_energy, rest_since)
             if reason is not None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from netgym.physics.contacts import resolve_contacts
 from netgym.physics.integrators import (
@@ -140,3 +140,21 @@ def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, co
             update_entered(x, before, n_net, entered, opening)
             stats[SUBSTEPS] += 1
     return OK if _finite_and_below(v, divergence_speed) else DIVERGED
+
+
+@njit(cache=True, parallel=True)
+def advance_batch(x, v, inv_mass, entered, n_bodies, n_steps, n_net, springs, params, segments, poles,
+                  contact, threshold, gravity, drag, radius, opening, integrator, dt, max_travel,
+                  cg_tolerance, cg_max_iterations, divergence_speed, work, coef, stats, status):
+    """:func:`advance` for many simulators of one scene at once, in parallel (``prange``).
+
+    Simulator ``e`` owns rows ``:n_bodies[e]`` of ``x[e]``, ``v[e]``, ``inv_mass[e]`` (padded
+    arrays) and integrates ``n_steps[e]`` steps (none when 0); its result goes to ``status[e]``.
+    """
+    for e in prange(x.shape[0]):
+        if n_steps[e] > 0:
+            n = n_bodies[e]
+            status[e] = advance(x[e, :n], v[e, :n], inv_mass[e, :n], entered[e, :n - n_net], n_net, springs,
+                                params, segments, poles, contact, threshold, gravity, drag, radius, opening,
+                                integrator, dt, n_steps[e], max_travel, cg_tolerance, cg_max_iterations,
+                                divergence_speed, work[e, :, :n], coef[e], stats[e])

@@ -1,0 +1,63 @@
+"""The ballistic oracle: a closed-form launch through the centre of the opening.
+
+From the thrower's distance and height (the observation), it solves the drag-free parabola
+through the opening's centre for each elevation in the scene's range and keeps the steepest
+one (a horizontal opening, entered from above) or the flattest one (a vertical mouth) whose
+speed is in range. No learning; its capture rate is the reference ceiling for learned agents.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from netgym.config import SceneConfig
+from netgym.launch import from_range
+from netgym.physics.net import Opening
+
+
+class BallisticOracle:
+    """Chooses actions of NetCatch-v0 by solving the launch parabola.
+
+    :param scene: the environment's scene config (``env.unwrapped.scene``).
+    :param opening: the net's opening (``env.unwrapped.sim.model.geometry.opening``).
+    :param max_elevation: steepest elevation considered for a horizontal opening (degrees).
+    """
+
+    def __init__(self, scene: SceneConfig, opening: Opening, max_elevation: float = 75.0) -> None:
+        self.scene = scene
+        self.from_above = opening.axis == 2
+        self.max_elevation = max_elevation
+        self.gravity = -scene.simulation.gravity
+
+    def launch(self, distance: float, height: float) -> tuple[float, float]:
+        """(speed m/s, elevation degrees) of the chosen parabola from a thrower at horizontal
+        ``distance`` and ``height`` relative to the opening's centre."""
+        lo, hi = self.scene.throw.elevation
+        elevations = np.linspace(lo, min(hi, self.max_elevation) if self.from_above else hi, 241)
+        if self.from_above:
+            elevations = elevations[::-1]
+        vmin, vmax = self.scene.throw.speed
+        best = None
+        for elevation in elevations:
+            theta = math.radians(elevation)
+            rise = distance * math.tan(theta) + height  # height is thrower minus centre
+            if rise <= 0.0:
+                continue
+            speed = math.sqrt(self.gravity * distance ** 2 / (2.0 * math.cos(theta) ** 2 * rise))
+            if vmin <= speed <= vmax:
+                return speed, float(elevation)
+            if best is None or abs(speed - np.clip(speed, vmin, vmax)) < abs(best[0] - np.clip(best[0], vmin, vmax)):
+                best = (float(np.clip(speed, vmin, vmax)), float(elevation))
+        return best if best is not None else (vmax, float(elevations[0]))
+
+    def predict(self, observation: np.ndarray, state=None, episode_start=None, deterministic: bool = True):
+        """Stable-Baselines3-style ``predict`` for one observation or a batch of them."""
+        obs = np.asarray(observation, dtype=np.float64)
+        batch = obs.reshape(-1, obs.shape[-1])
+        actions = np.empty((len(batch), 3), dtype=np.float32)
+        for k, row in enumerate(batch):
+            speed, elevation = self.launch(distance=float(row[0]), height=float(row[1]))
+            actions[k] = (from_range(speed, self.scene.throw.speed), from_range(elevation, self.scene.throw.elevation), 0.0)
+        return (actions if obs.ndim > 1 else actions[0]), state

@@ -1,0 +1,5 @@
+"""Gymnasium environments of netgym."""
+
+from netgym.envs.net_catch import NetCatchEnv
+
+__all__ = ["NetCatchEnv"]

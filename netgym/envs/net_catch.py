@@ -1,0 +1,244 @@
+"""NetCatch-v0: throw balls into a goal net."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from netgym.config import SceneConfig, load_scene
+from netgym.launch import Thrower, action_to_velocity, opening_centre, opening_miss_distance, sample_thrower
+from netgym.physics.simulator import Simulator, ThrowResult
+
+REWARD_MODES = ("sparse", "shaped")
+SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
+SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
+
+
+class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
+    """Throw balls so that a mass-spring goal net catches them.
+
+    A thrower stands at a random place around the net (default scene ``basket``: the seed's
+    open-top box net, 2 x 2 m opening at 3 m). Each step is one throw: the agent chooses the
+    launch speed, elevation and azimuth of a ball, and the simulator runs the throw until its
+    outcome is decided. An episode is a sequence of throws into the same net; caught balls stay
+    in it, so later throws meet a loaded, deformed net and other balls.
+
+    ## Action space
+
+    ``Box(-1, 1, (3,), float32)``, each component mapped linearly onto the scene's range
+    (``[throw]`` in the scene file; values outside [-1, 1] are clipped):
+
+    | index | meaning | basket range |
+    |---|---|---|
+    | 0 | launch speed | 4 to 16 m/s |
+    | 1 | elevation above the horizon | 20 to 80 degrees |
+    | 2 | azimuth offset from the direction to the opening's centre | -20 to 20 degrees |
+
+    ## Observation space
+
+    ``Box(low, high, (7,), float32)``:
+
+    | index | meaning | unit |
+    |---|---|---|
+    | 0 | horizontal distance from the thrower to the opening's centre | m |
+    | 1 | release height minus the opening centre's height | m |
+    | 2 | cosine of the thrower's bearing around the net | - |
+    | 3 | sine of the thrower's bearing | - |
+    | 4 | balls caught so far / balls per episode | - |
+    | 5 | throws left / balls per episode | - |
+    | 6 | height of the highest caught ball minus the opening centre's height (the net's lowest point when none) | m |
+
+    ## Rewards
+
+    ``sparse`` (default): +1 for a captured ball, 0 otherwise. ``shaped``: a miss also earns
+    ``0.5 * exp(-d / 1 m)``, where ``d`` is the closest distance between the ball's launch
+    parabola and the opening rectangle (bounded in [0, 0.5], so a capture is always better).
+
+    ## Starting state
+
+    The net at rest under gravity without balls; the thrower drawn uniformly from the scene's
+    distance, bearing and height ranges with ``np_random``. Each throw draws a new thrower.
+
+    ## Episode end
+
+    Terminated after ``balls_per_episode`` throws. Never truncated.
+
+    ## Info
+
+    ``captured`` (bool), ``reason`` (how the outcome was decided), ``final_position`` of the
+    ball, ``sim_time`` (simulated seconds of the throw), ``substeps`` (integration substeps),
+    ``launch_position`` and ``launch_velocity``.
+
+    ## Arguments
+
+    | argument | default | meaning |
+    |---|---|---|
+    | ``scene`` | ``"basket"`` | built-in scene name (``"basket"``, ``"goal"``), TOML path or :class:`SceneConfig` |
+    | ``integrator`` | scene's | ``explicit_euler``, ``symplectic_euler``, ``rk4``, ``implicit_euler`` |
+    | ``dt`` | scene's | integration step (s) |
+    | ``balls_per_episode`` | 3 | throws per episode |
+    | ``reward_mode`` | ``"sparse"`` | ``"sparse"`` or ``"shaped"`` |
+    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"`` |
+    | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
+    | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
+    """
+
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
+
+    def __init__(self, scene: str | Path | SceneConfig = "basket", integrator: str | None = None,
+                 dt: float | None = None, balls_per_episode: int = 3, reward_mode: str = "sparse",
+                 render_mode: str | None = None, fast: bool = True,
+                 overrides: dict[str, Any] | None = None) -> None:
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
+        if reward_mode not in REWARD_MODES:
+            raise ValueError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
+        if not isinstance(balls_per_episode, int) or not 1 <= balls_per_episode <= 50:
+            raise ValueError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
+        config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
+        changes = dict(overrides or {})
+        if integrator is not None:
+            changes["simulation.integrator"] = integrator
+        if dt is not None:
+            changes["simulation.dt"] = dt
+        self.sim = Simulator(config.replace(changes) if changes else config)
+        self.scene = self.sim.config
+        self.balls_per_episode = balls_per_episode
+        self.reward_mode = reward_mode
+        self.render_mode = render_mode
+        self.fast = fast
+        self._centre = opening_centre(self.sim.model.geometry.opening)
+        self._floor = float(self.sim.state.x[:, 2].min())
+        self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
+        self.observation_space = self._observation_space()
+        self.thrower: Thrower | None = None
+        self._throws_done = 0
+        self._caught = 0
+        self._renderer = None
+        self._frames: list[np.ndarray] = []
+
+    # ------------------------------------------------------------------ spaces
+    def _observation_space(self) -> spaces.Box:
+        t, cz = self.scene.throw, float(self._centre[2])
+        top = self.scene.net.upper[2] + self.scene.ball.radius - cz
+        low = np.array([t.distance[0], t.height[0] - cz, -1, -1, 0, 0, -cz], dtype=np.float32)
+        high = np.array([t.distance[1], t.height[1] - cz, 1, 1, 1, 1, max(top, self._floor - cz)], dtype=np.float32)
+        return spaces.Box(low, high, dtype=np.float32)
+
+    def _observation(self) -> np.ndarray:
+        assert self.thrower is not None
+        cz = float(self._centre[2])
+        balls = self.sim.ball_positions
+        pile = float(balls[:, 2].max()) if len(balls) else self._floor
+        bearing = math.radians(self.thrower.bearing)
+        obs = np.array([self.thrower.distance, self.thrower.height - cz, math.cos(bearing), math.sin(bearing),
+                        self._caught / self.balls_per_episode,
+                        (self.balls_per_episode - self._throws_done) / self.balls_per_episode, pile - cz],
+                       dtype=np.float32)
+        return np.clip(obs, self.observation_space.low, self.observation_space.high)
+
+    # ------------------------------------------------------------------ gym API
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict]:
+        """Start an episode: the net at rest and empty, a new thrower."""
+        super().reset(seed=seed)
+        self.sim.reset()
+        self._throws_done = 0
+        self._caught = 0
+        self.thrower = sample_thrower(self.scene.throw, self.sim.model.geometry.opening, self.np_random)
+        self._frames = []
+        if self.render_mode in ("human", "rgb_array_list"):
+            self._record_frame(self.sim)
+        return self._observation(), {}
+
+    def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict]:
+        """Throw one ball with launch ``action`` and simulate until its outcome is decided."""
+        if self.thrower is None:
+            raise RuntimeError("call reset() before step()")
+        velocity = self.action_velocity(action)
+        launch = self.thrower.position
+        frame_dt = 1.0 / self.metadata["render_fps"] if self.render_mode in ("human", "rgb_array_list") else None
+        observer = self._record_frame if frame_dt is not None else None
+        result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frame_dt=frame_dt)
+        return self.after_throw(launch, velocity, result)
+
+    def action_velocity(self, action: np.ndarray) -> np.ndarray:
+        """Validate an action and map it to a launch velocity for the current thrower."""
+        a = np.asarray(action, dtype=np.float64)
+        if a.shape != (3,):
+            raise ValueError(f"action must have shape (3,), got {a.shape}")
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"action must be finite, got {a.tolist()}")
+        assert self.thrower is not None
+        return action_to_velocity(np.clip(a, -1.0, 1.0), self.thrower, self.scene.throw)
+
+    def after_throw(self, launch: np.ndarray, velocity: np.ndarray,
+                    result: ThrowResult) -> tuple[np.ndarray, float, bool, bool, dict]:
+        """Book a finished throw: reward, episode end, next thrower, observation and info."""
+        self._throws_done += 1
+        self._caught += int(result.captured)
+        reward = 1.0 if result.captured else 0.0
+        if self.reward_mode == "shaped" and not result.captured:
+            miss = opening_miss_distance(launch, velocity, self.sim.model.geometry.opening,
+                                         self.sim.model.gravity, self.sim.model.ball_radius)
+            reward = SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
+        terminated = self._throws_done >= self.balls_per_episode
+        if not terminated:
+            self.thrower = sample_thrower(self.scene.throw, self.sim.model.geometry.opening, self.np_random)
+        info = {"captured": result.captured, "reason": result.reason,
+                "final_position": result.final_position, "sim_time": result.time,
+                "substeps": result.substeps, "launch_position": launch, "launch_velocity": velocity}
+        if self.render_mode == "human":
+            self._renderer_show()
+        return self._observation(), reward, terminated, False, info
+
+    # ------------------------------------------------------------------ rendering
+    def _get_renderer(self):
+        if self._renderer is None:
+            from netgym.render import Renderer
+
+            self._renderer = Renderer(self.sim, human=self.render_mode == "human", fps=self.metadata["render_fps"])
+        return self._renderer
+
+    def _record_frame(self, sim: Simulator) -> None:
+        renderer = self._get_renderer()
+        if renderer.due(sim.state.time):
+            frame = renderer.draw(sim)
+            if self.render_mode == "rgb_array_list":
+                self._frames.append(frame)
+            else:
+                renderer.show(frame)
+
+    def _renderer_show(self) -> None:
+        renderer = self._get_renderer()
+        renderer.show(renderer.draw(self.sim))
+
+    def render(self) -> np.ndarray | list[np.ndarray] | None:
+        """``rgb_array``: the current frame (H, W, 3) uint8; ``rgb_array_list``: the frames since
+        the last render or reset; ``human``: shows the current frame, returns None."""
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode to make()")
+            return None
+        renderer = self._get_renderer()
+        if self.render_mode == "rgb_array":
+            return renderer.draw(self.sim)
+        if self.render_mode == "rgb_array_list":
+            frames, self._frames = self._frames, []
+            return frames
+        renderer.show(renderer.draw(self.sim))
+        return None
+
+    def close(self) -> None:
+        """Release the window, if any; safe to call more than once."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+    def __getstate__(self) -> dict:
+        state = self.__dict__.copy()
+        state["_renderer"] = None  # windows and fonts do not travel; a new one opens on demand
+        return state

@@ -1,0 +1,93 @@
+"""NetCatchVectorEnv: many NetCatch-v0 environments stepped together.
+
+Each sub-environment keeps its own simulator and decisions; the integration work of all the
+throws in a step runs in one numba call, parallel across environments (``prange``). Results
+are identical to the same number of :class:`NetCatchEnv` with the same seeds.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from netgym.envs.net_catch import NetCatchEnv
+from netgym.physics.batch import BatchRunner
+
+
+class NetCatchVectorEnv(VectorEnv):
+    """``num_envs`` copies of :class:`NetCatchEnv`, stepped in one parallel call.
+
+    Autoreset mode is ``SAME_STEP``: when an episode ends, ``step`` returns the first
+    observation of the next episode, and the last observation and info are in
+    ``infos["final_obs"]`` and ``infos["final_info"]`` (masked by ``infos["_final_obs"]``).
+    Keyword arguments are those of :class:`NetCatchEnv`; ``render_mode`` is not supported.
+    """
+
+    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": []}
+
+    def __init__(self, num_envs: int = 1, **kwargs: Any) -> None:
+        if not isinstance(num_envs, int) or num_envs < 1:
+            raise ValueError(f"num_envs = {num_envs!r}; allowed: an integer >= 1")
+        if kwargs.get("render_mode") is not None:
+            raise ValueError("NetCatchVectorEnv does not render; use NetCatchEnv for render_mode")
+        kwargs.pop("render_mode", None)
+        kwargs.pop("max_episode_steps", None)
+        self.envs = [NetCatchEnv(**kwargs) for _ in range(num_envs)]
+        self.num_envs = num_envs
+        self.single_observation_space = self.envs[0].observation_space
+        self.single_action_space = self.envs[0].action_space
+        self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self.action_space = batch_space(self.single_action_space, num_envs)
+        self._runner = BatchRunner()
+
+    def reset(self, *, seed: int | list[int | None] | None = None,
+              options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
+        """Reset every environment; an int ``seed`` seeds environment ``i`` with ``seed + i``."""
+        if seed is None or isinstance(seed, int):
+            seeds = [None if seed is None else seed + i for i in range(self.num_envs)]
+        else:
+            seeds = list(seed)
+            if len(seeds) != self.num_envs:
+                raise ValueError(f"seed has {len(seeds)} entries; expected num_envs = {self.num_envs}")
+        observations, infos = [], {}
+        for i, (env, s) in enumerate(zip(self.envs, seeds)):
+            obs, info = env.reset(seed=s, options=options)
+            observations.append(obs)
+            infos = self._add_info(infos, info, i)
+        return np.stack(observations), infos
+
+    def step(self, actions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+        """One throw in every environment; the simulation of all throws runs in parallel."""
+        actions = np.asarray(actions)
+        if actions.shape != self.action_space.shape:
+            raise ValueError(f"actions must have shape {self.action_space.shape}, got {actions.shape}")
+        launches, velocities, plans = [], [], []
+        for env, action in zip(self.envs, actions):
+            velocity = env.action_velocity(action)
+            assert env.thrower is not None
+            launch = env.thrower.position
+            launches.append(launch)
+            velocities.append(velocity)
+            plans.append(env.sim.throw_plan(launch, velocity, fast=env.fast))
+        results = self._runner.run([env.sim for env in self.envs], plans)
+        observations, rewards = [], np.zeros(self.num_envs)
+        terminated = np.zeros(self.num_envs, dtype=bool)
+        truncated = np.zeros(self.num_envs, dtype=bool)
+        infos: dict[str, Any] = {}
+        for i, env in enumerate(self.envs):
+            obs, rewards[i], terminated[i], truncated[i], info = env.after_throw(launches[i], velocities[i], results[i])
+            if terminated[i] or truncated[i]:
+                infos = self._add_info(infos, {"final_obs": obs, "final_info": info}, i)
+                obs, _ = env.reset()
+            observations.append(obs)
+            infos = self._add_info(infos, info, i)
+        return np.stack(observations), rewards, terminated, truncated, infos
+
+    def close_extras(self, **kwargs: Any) -> None:
+        """Close the sub-environments."""
+        for env in self.envs:
+            env.close()
