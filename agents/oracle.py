@@ -52,12 +52,16 @@ class BallisticOracle:
                 best = (float(np.clip(speed, vmin, vmax)), float(elevation))
         return best if best is not None else (vmax, float(elevations[0]))
 
+    def action(self, distance: float, height: float) -> np.ndarray:
+        """The action (speed, elevation, azimuth offset in [-1, 1]) of :meth:`launch`."""
+        speed, elevation = self.launch(distance, height)
+        return np.array([from_range(speed, self.scene.throw.speed),
+                         from_range(elevation, self.scene.throw.elevation), 0.0], dtype=np.float32)
+
     def predict(self, observation: np.ndarray, state=None, episode_start=None, deterministic: bool = True):
-        """Stable-Baselines3-style ``predict`` for one observation or a batch of them."""
+        """Stable-Baselines3-style ``predict`` for one observation or a batch of them
+        (observation[0] = distance, observation[1] = height relative to the opening)."""
         obs = np.asarray(observation, dtype=np.float64)
         batch = obs.reshape(-1, obs.shape[-1])
-        actions = np.empty((len(batch), 3), dtype=np.float32)
-        for k, row in enumerate(batch):
-            speed, elevation = self.launch(distance=float(row[0]), height=float(row[1]))
-            actions[k] = (from_range(speed, self.scene.throw.speed), from_range(elevation, self.scene.throw.elevation), 0.0)
+        actions = np.stack([self.action(float(row[0]), float(row[1])) for row in batch])
         return (actions if obs.ndim > 1 else actions[0]), state

@@ -27,3 +27,22 @@ def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
 def test_python_m_netgym_reports_a_throw() -> None:
     out = _run("-m", "netgym")
     assert "CAPTURED" in out and "substeps" in out
+
+
+def test_bench_env_quick_reports_agreement_and_throughput() -> None:
+    out = _run("scripts/bench_env.py", "--quick")
+    rows = [line for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
+    assert len(rows) == 2
+    for line in rows:
+        assert float(line.split("|")[3].strip().rstrip("%")) >= 0.0
+    assert "2 thread(s)" in out or "1 thread(s)" in out
+
+
+def test_render_throw_writes_a_gif(tmp_path) -> None:
+    from PIL import Image
+
+    target = tmp_path / "throw.gif"
+    out = _run("scripts/render_throw.py", "--throws", "1", "--output", str(target))
+    assert "wrote" in out
+    with Image.open(target) as gif:
+        assert gif.n_frames > 10 and gif.size == (480, 360)
