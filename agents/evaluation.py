@@ -1,0 +1,64 @@
+"""Capture rate of a policy on NetCatch-v0 over seeded episodes, with a 95% confidence interval."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+
+from netgym.envs import NetCatchEnv
+
+
+class Policy(Protocol):
+    """Anything with a Stable-Baselines3-style ``predict``."""
+
+    def predict(self, observation: np.ndarray, state: Any = None, episode_start: Any = None,
+                deterministic: bool = True) -> tuple[np.ndarray, Any]: ...
+
+
+@dataclass(frozen=True)
+class CaptureRate:
+    """Captured throws out of all throws, and the Wilson 95% interval of the rate."""
+
+    captured: int
+    throws: int
+    low: float
+    high: float
+
+    @property
+    def rate(self) -> float:
+        """Fraction of throws captured."""
+        return self.captured / self.throws
+
+    def __str__(self) -> str:
+        return (f"{100 * self.rate:.1f}% ({self.captured}/{self.throws} throws; "
+                f"95% CI {100 * self.low:.1f}-{100 * self.high:.1f}%)")
+
+
+def wilson_interval(successes: int, trials: int, z: float = 1.96) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion."""
+    if trials == 0:
+        return 0.0, 1.0
+    p = successes / trials
+    centre = (p + z * z / (2 * trials)) / (1 + z * z / trials)
+    half = z * math.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / (1 + z * z / trials)
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def evaluate(policy: Policy, episodes: int, seed: int = 0, **env_kwargs: Any) -> CaptureRate:
+    """Run ``episodes`` episodes seeded ``seed, seed + 1, ...`` and count captured throws."""
+    env = NetCatchEnv(**env_kwargs)
+    captured = throws = 0
+    for episode in range(episodes):
+        obs, _ = env.reset(seed=seed + episode)
+        done = False
+        while not done:
+            action, _ = policy.predict(obs, deterministic=True)
+            obs, _, terminated, truncated, info = env.step(action)
+            captured += int(info["captured"])
+            throws += 1
+            done = terminated or truncated
+    env.close()
+    return CaptureRate(captured, throws, *wilson_interval(captured, throws))
