@@ -46,3 +46,11 @@ def test_render_throw_writes_a_gif(tmp_path) -> None:
     assert "wrote" in out
     with Image.open(target) as gif:
         assert gif.n_frames > 10 and gif.size == (480, 360)
+
+
+def test_train_rllib_quick_runs_one_iteration(tmp_path) -> None:
+    import pytest
+
+    pytest.importorskip("ray.rllib", reason="the rllib extra is not installed")
+    out = _run("scripts/train_rllib.py", "--quick", "--out", str(tmp_path / "rllib"))
+    assert "iteration 1:" in out and "checkpoint" in out
