@@ -54,3 +54,13 @@ def test_train_rllib_quick_runs_one_iteration(tmp_path) -> None:
     pytest.importorskip("ray.rllib", reason="the rllib extra is not installed")
     out = _run("scripts/train_rllib.py", "--quick", "--out", str(tmp_path / "rllib"))
     assert "iteration 1:" in out and "checkpoint" in out
+
+
+def test_report_quick_covers_every_section() -> None:
+    out = _run("scripts/report.py", "--quick")
+    for heading in ("## 1. Work-precision", "## 2. Outcome accuracy", "## 3. Stability limits",
+                    "## 4. Throughput", "## 5. Peers"):
+        assert heading in out
+    for integrator in ("explicit_euler", "symplectic_euler", "rk4", "implicit_euler"):
+        assert f"| {integrator} |" in out
+    assert "NumPy vectorised" in out

@@ -182,9 +182,11 @@ class Simulator:
         self._awake = True
 
     # ------------------------------------------------------------------ stepping
-    def step(self, n_steps: int = 1) -> None:
-        """Integrate everything for ``n_steps`` steps of the scene's ``dt`` (no shortcuts)."""
-        self._advance(n_steps, self._integrator, self._dt)
+    def step(self, n_steps: int = 1, integrator: str | None = None, dt: float | None = None) -> None:
+        """Integrate everything for ``n_steps`` steps (no shortcuts), with the scene's
+        integrator and ``dt`` unless others are given (for convergence and stability studies)."""
+        code = self._integrator if integrator is None else INTEGRATORS.index(integrator)
+        self._advance(n_steps, code, self._dt if dt is None else dt)
         self._awake = True
 
     def relax(self, max_time: float = 60.0) -> None:
