@@ -123,6 +123,26 @@ def vector_scaling(scene: str, num_envs: int, steps: int) -> dict[int, float]:
     return rates
 
 
+def sb3_throughput(kind: str, num_envs: int, steps: int) -> float:
+    """Environment steps per second of the SB3 training environment (``native``: the vector env
+    through the adapter; ``subproc``: ``make_vec_env`` with ``SubprocVecEnv``), noisy oracle actions."""
+    from agents.training import make_training_env
+
+    env = make_training_env(kind, num_envs, seed=0)
+    scene = Simulator("basket")
+    oracle = BallisticOracle(scene.config, scene.model.geometry.opening)
+    rng = np.random.default_rng(0)
+    obs = env.reset()
+    env.step(oracle.predict(obs)[0])  # warm-up
+    start = time.perf_counter()
+    for _ in range(steps):
+        actions = np.clip(oracle.predict(obs)[0] + rng.normal(0, 0.1, (num_envs, 3)), -1, 1)
+        obs, *_ = env.step(actions.astype(np.float32))
+    rate = steps * num_envs / (time.perf_counter() - start)
+    env.close()
+    return rate
+
+
 def main() -> None:
     """Parse arguments, run, print a markdown report."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -143,6 +163,9 @@ def main() -> None:
     print("\n| vector env (basket, 8 envs) | throws/s |\n|---|---:|")
     for threads, rate in vector_scaling("basket", 8, 2 if args.quick else 30).items():
         print(f"| {threads} thread(s) | {rate:.1f} |")
+    print("\n| SB3 training env (basket, 8 envs) | env steps/s |\n|---|---:|")
+    for kind in ("native", "subproc"):
+        print(f"| {kind} | {sb3_throughput(kind, 8, 2 if args.quick else 30):.1f} |")
     print("\n(per-process figures; agreement and full-simulation runs use "
           f"{1 if args.quick else args.workers} process(es))")
 

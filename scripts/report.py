@@ -193,6 +193,48 @@ def numpy_peer(dt: float, seconds: float) -> tuple[float, np.ndarray]:
     return steps / (time.perf_counter() - start), x
 
 
+def mujoco_peer(dt: float, seconds: float) -> tuple[float, np.ndarray] | None:
+    """The same net in MuJoCo (``bench`` extra): one body with three slide joints per free
+    particle (joint damping = air drag), a site per particle, one spatial tendon per spring
+    (stiffness ks, damping kd, spring length = rest length), contacts off, MuJoCo's Euler
+    integrator (damping implicit) at the same dt. Returns (steps per second, final positions),
+    or None when MuJoCo is not installed."""
+    try:
+        import mujoco
+    except ImportError:
+        return None
+    sim = Simulator("basket")
+    m = sim.model
+    pos, fixed, mass = m.geometry.positions, m.geometry.fixed, sim.config.net.particle_mass
+    damping = m.drag * mass
+    xml = [f'<mujoco><option timestep="{dt}" integrator="Euler" gravity="0 0 {m.gravity}">'
+           '<flag contact="disable"/></option><worldbody>']
+    for k, p in enumerate(pos):
+        if fixed[k]:
+            xml.append(f'<site name="s{k}" pos="{p[0]} {p[1]} {p[2]}"/>')
+            continue
+        joints = "".join(f'<joint type="slide" axis="{a}" damping="{damping}"/>' for a in ("1 0 0", "0 1 0", "0 0 1"))
+        xml.append(f'<body pos="{p[0]} {p[1]} {p[2]}">{joints}'
+                   f'<inertial pos="0 0 0" mass="{mass}" diaginertia="1e-6 1e-6 1e-6"/><site name="s{k}"/></body>')
+    xml.append("</worldbody><tendon>")
+    for (i, j), (rest, ks, kd) in zip(m.springs, m.spring_params):
+        xml.append(f'<spatial stiffness="{ks}" damping="{kd}" springlength="{rest}">'
+                   f'<site site="s{i}"/><site site="s{j}"/></spatial>')
+    xml.append("</tendon></mujoco>")
+    model = mujoco.MjModel.from_xml_string("".join(xml))
+    data = mujoco.MjData(model)
+    mujoco.mj_step(model, data)  # warm-up
+    mujoco.mj_resetData(model, data)
+    steps = round(seconds / dt)
+    start = time.perf_counter()
+    for _ in range(steps):
+        mujoco.mj_step(model, data)
+    rate = steps / (time.perf_counter() - start)
+    x = pos.copy()
+    x[~fixed] += data.qpos.reshape(-1, 3)
+    return rate, x
+
+
 def peers(quick: bool) -> list[dict]:
     """netgym and the NumPy peer on the same released net at the same dt, same reference."""
     seconds = 0.05 if quick else 0.2
@@ -214,8 +256,13 @@ def peers(quick: bool) -> list[dict]:
     def rms(x: np.ndarray) -> float:
         return float(np.sqrt(np.mean(np.sum((x - reference) ** 2, axis=1))))
 
-    return [{"system": "netgym (numba kernels), symplectic Euler", "steps_per_s": ours_rate, "error": rms(ours)},
+    rows = [{"system": "netgym (numba kernels), symplectic Euler", "steps_per_s": ours_rate, "error": rms(ours)},
             {"system": "NumPy vectorised, symplectic Euler", "steps_per_s": peer_rate, "error": rms(peer)}]
+    mujoco_result = mujoco_peer(dt, seconds)
+    if mujoco_result is not None:
+        rows.append({"system": "MuJoCo (slide joints + spatial spring tendons), Euler", "steps_per_s": mujoco_result[0],
+                     "error": rms(mujoco_result[1])})
+    return rows
 
 
 def plot_work_precision(rows: list[dict], path: Path) -> None:
@@ -340,7 +387,11 @@ def to_markdown(wp: list[dict], outcomes: list[dict], stability: list[dict], pee
             "The same net (604 particles, 3250 springs, same masses, springs, dampers, drag and gravity), released "
             f"from its built shape, {DEFAULT[1] * 1e3:g} ms steps, error against the same rk4 reference after the "
             "same simulated time. The NumPy version is a straightforward vectorised implementation (gather, "
-            "`np.add.at` scatter); neither has contacts in this test (the net does not touch anything).", "",
+            "`np.add.at` scatter). MuJoCo (`pip install -e .[bench]`) models each free particle as a body with "
+            "three slide joints (joint damping = air drag), each spring as a spatial tendon between two sites "
+            "(stiffness ks, damping kd, spring length = rest length), fixed particles as world sites, contacts "
+            "off, its Euler integrator (dampers implicit). None has contacts in this test (the net touches nothing).",
+            "",
             "| system | steps/s | RMS error vs reference (m) | speed-up of netgym |", "|---|---:|---:|---:|"]
     ours = peer_rows[0]["steps_per_s"]
     for r in peer_rows:
@@ -367,11 +418,15 @@ def main() -> None:
         env_rows.append(f"| {scene} | {s['throws']} | {100 * s['agreement']:.1f}% | {s['fast_throws_per_s']:.1f} | "
                         f"{s['full_throws_per_s']:.2f} | {s['touching']} | {s['fast_touching_throws_per_s']:.1f} |")
     scaling = bench_env.vector_scaling("basket", 8, 2 if args.quick else 30)
+    sb3 = {kind: bench_env.sb3_throughput(kind, 8, 2 if args.quick else 30) for kind in ("native", "subproc")}
     env_table = "\n".join(
         ["| scene | throws | fast/full agreement | fast throws/s | full throws/s | throws touching the net | "
          "fast throws/s on those |", "|---|---:|---:|---:|---:|---:|---:|", *env_rows, "",
          "| NetCatchVectorEnv, basket, 8 envs, noisy oracle actions | throws/s |", "|---|---:|",
-         *[f"| {t} numba thread(s) | {r:.1f} |" for t, r in scaling.items()]])
+         *[f"| {t} numba thread(s) | {r:.1f} |" for t, r in scaling.items()], "",
+         "| SB3 training environment, basket, 8 envs, noisy oracle actions | env steps/s |", "|---|---:|",
+         f"| native: NetCatchVectorEnv through NetCatchSB3VecEnv | {sb3['native']:.1f} |",
+         f"| make_vec_env with SubprocVecEnv | {sb3['subproc']:.1f} |"]])
     text = to_markdown(wp, outcome_rows, stability, peer_rows, sim_table, env_table, count)
     if args.quick:
         print(text)
