@@ -126,3 +126,25 @@ def test_remove_ball_checks_its_index() -> None:
     sim = _sim("basket")
     with pytest.raises(IndexError, match="ball index 0 out of range"):
         sim.remove_ball(0)
+
+
+def test_clearance_is_the_distance_to_the_nearest_obstacle() -> None:
+    from netgym.physics.contacts import clearance
+
+    sim = _sim("basket")
+    m = sim.model
+    sim.launch_ball([0.2, -0.3, 2.0], [0.0, 0.0, 0.0])
+    sim.launch_ball([2.5, 0.0, 1.0], [0.0, 0.0, 0.0])
+    rng = np.random.default_rng(5)
+    net = sim.state.x[: m.n_net]
+    half = 0.5 * np.linalg.norm(net[m.segments[:, 0]] - net[m.segments[:, 1]], axis=1).max()
+    for _ in range(20):
+        centre = rng.uniform([-3, -3, 0.3], [3, 3, 5])
+        sim.state.x[-1] = centre
+        particles = np.linalg.norm(net - centre, axis=1).min() - m.ball_radius - half
+        a, b = m.poles[:, :3], m.poles[:, 3:6]
+        t = np.clip(np.sum((centre - a) * (b - a), axis=1) / np.sum((b - a) ** 2, axis=1), 0, 1)
+        poles = (np.linalg.norm(centre - (a + t[:, None] * (b - a)), axis=1) - m.ball_radius - m.poles[:, 6]).min()
+        other = np.linalg.norm(sim.state.x[-2] - centre) - 2 * m.ball_radius
+        expected = min(particles, poles, other)
+        assert clearance(sim.state.x, m.n_net, len(sim.state.x) - 1, m.ball_radius, m.segments, m.poles) == pytest.approx(expected)

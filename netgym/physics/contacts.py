@@ -203,3 +203,31 @@ def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, thres
         if x[k, 2] < floor and inv_mass[k] > 0.0:
             pair = BALL_GROUND if k >= n_net else NET_GROUND
             _static_response(x, v, k, 0.0, 0.0, 1.0, floor - x[k, 2], coef[pair, 0], coef[pair, 1], threshold)
+
+
+@njit(cache=True)
+def clearance(x, n_net, row, radius, segments, poles):
+    """How far the ball in ``row`` can move before it could touch a net particle or spring
+    segment (nearest particle distance, less half the longest segment), a pole or another ball,
+    all held still. Negative when it already touches."""
+    longest = 0.0
+    for s in range(segments.shape[0]):
+        i = segments[s, 0]
+        j = segments[s, 1]
+        longest = max(longest, (x[i, 0] - x[j, 0]) ** 2 + (x[i, 1] - x[j, 1]) ** 2 + (x[i, 2] - x[j, 2]) ** 2)
+    nearest = math.inf
+    for k in range(n_net):
+        nearest = min(nearest, (x[k, 0] - x[row, 0]) ** 2 + (x[k, 1] - x[row, 1]) ** 2 + (x[k, 2] - x[row, 2]) ** 2)
+    gap = math.sqrt(nearest) - radius - 0.5 * math.sqrt(longest)
+    for p in range(poles.shape[0]):
+        ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
+        ex, ey, ez = poles[p, 3] - ax, poles[p, 4] - ay, poles[p, 5] - az
+        t = ((x[row, 0] - ax) * ex + (x[row, 1] - ay) * ey + (x[row, 2] - az) * ez) / (ex * ex + ey * ey + ez * ez)
+        t = min(max(t, 0.0), 1.0)
+        d = math.sqrt((x[row, 0] - ax - t * ex) ** 2 + (x[row, 1] - ay - t * ey) ** 2 + (x[row, 2] - az - t * ez) ** 2)
+        gap = min(gap, d - radius - poles[p, 6])
+    for b in range(n_net, x.shape[0]):
+        if b != row:
+            d = math.sqrt((x[b, 0] - x[row, 0]) ** 2 + (x[b, 1] - x[row, 1]) ** 2 + (x[b, 2] - x[row, 2]) ** 2)
+            gap = min(gap, d - 2.0 * radius)
+    return gap

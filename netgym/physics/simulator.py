@@ -19,7 +19,7 @@ import numpy as np
 
 from netgym.config import INTEGRATORS, SceneConfig, load_scene
 from netgym.errors import SimulationDivergedError, UnstableTimeStepError
-from netgym.physics import flight, stepping
+from netgym.physics import contacts, flight, stepping
 from netgym.physics.forces import energies
 from netgym.physics.integrators import IMPLICIT_EULER, workspace
 from netgym.physics.model import BALL_GROUND, Model, State
@@ -322,21 +322,8 @@ class Simulator:
     def _clearance(self, row: int) -> float:
         """Distance the ball in ``row`` can travel before it could touch the net, a pole or
         another ball (the net held still)."""
-        m, x = self.model, self.state.x
-        c, r = x[row], m.ball_radius
-        net = x[:m.n_net]
-        seg = net[m.segments[:, 0]] - net[m.segments[:, 1]]
-        half_segment = 0.5 * float(np.sqrt(np.max(np.sum(seg * seg, axis=1))))
-        gap = float(np.sqrt(np.min(np.sum((net - c) ** 2, axis=1)))) - r - half_segment
-        a, b = m.poles[:, :3], m.poles[:, 3:6]
-        e = b - a
-        t = np.clip(np.sum((c - a) * e, axis=1) / np.sum(e * e, axis=1), 0.0, 1.0)
-        pole_gap = np.linalg.norm(c - (a + t[:, None] * e), axis=1) - r - m.poles[:, 6]
-        gap = min(gap, float(pole_gap.min(initial=math.inf)))
-        others = np.delete(x[m.n_net:], row - m.n_net, axis=0)
-        if len(others):
-            gap = min(gap, float(np.sqrt(np.min(np.sum((others - c) ** 2, axis=1)))) - 2.0 * r)
-        return gap
+        m = self.model
+        return contacts.clearance(self.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
 
     def _local_speed(self, row: int) -> float:
         """Largest speed of the ball in ``row`` and of the bodies that could touch it soon
