@@ -426,7 +426,7 @@ def main() -> None:
          *[f"| {t} numba thread(s) | {r:.1f} |" for t, r in scaling.items()], "",
          "| SB3 training environment, basket, 8 envs, noisy oracle actions | env steps/s |", "|---|---:|",
          f"| native: NetCatchVectorEnv through NetCatchSB3VecEnv | {sb3['native']:.1f} |",
-         f"| make_vec_env with SubprocVecEnv | {sb3['subproc']:.1f} |"]])
+         f"| make_vec_env with SubprocVecEnv | {sb3['subproc']:.1f} |"])
     text = to_markdown(wp, outcome_rows, stability, peer_rows, sim_table, env_table, count)
     if args.quick:
         print(text)
