@@ -93,7 +93,7 @@ def plot_curve(points: list[tuple[int, float, float]], oracle: float, random: fl
     plt.close(fig)
 
 
-def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8, vec: str = "native",
+def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8, vec: str = "subproc",
           eval_every: int = 4096, eval_episodes: int = 40, seed: int = 0) -> tuple[PPO, list[tuple[int, float, float]]]:
     """Train PPO within a wall-clock budget; saves ``model.zip`` and ``best_model.zip`` in
     ``out`` and logs to TensorBoard under ``out/tb``. Returns the model and its capture curve

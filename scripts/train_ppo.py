@@ -1,8 +1,9 @@
 """Train PPO (Stable-Baselines3) on NetCatch-v0 and plot its learning curve.
 
-The training environments are the native vector env through the SB3 adapter (all throws of a
-step simulated in one parallel numba call; ``--vec subproc`` uses SB3's ``make_vec_env`` with
-``SubprocVecEnv`` instead). Training uses the documented ``shaped`` reward; evaluation counts
+The training environments are SB3's ``make_vec_env`` with ``SubprocVecEnv`` (measured 18% more
+environment steps per second than the native vector env on this 2-core machine, see
+docs/BENCHMARKS.md section 4); ``--vec native`` uses ``NetCatchVectorEnv`` through the SB3
+adapter (all throws of a step integrated in one parallel numba call). Training uses the documented ``shaped`` reward; evaluation counts
 captures on the sparse reward. Writes, under ``--out``:
 
 - ``model.zip``: the final model; ``best_model.zip``: the best evaluated one;
@@ -34,7 +35,8 @@ def main() -> None:
     parser.add_argument("--minutes", type=float, default=20.0, help="wall-clock training budget")
     parser.add_argument("--timesteps", type=int, default=200_000, help="upper bound on environment steps")
     parser.add_argument("--n-envs", type=int, default=8)
-    parser.add_argument("--vec", choices=("native", "subproc"), default="native")
+    parser.add_argument("--vec", choices=("native", "subproc"), default="subproc",
+                        help="SubprocVecEnv measured faster on 2 cores (docs/BENCHMARKS.md, section 4)")
     parser.add_argument("--eval-every", type=int, default=4096, help="environment steps between evaluations")
     parser.add_argument("--eval-episodes", type=int, default=40)
     parser.add_argument("--seed", type=int, default=0)
