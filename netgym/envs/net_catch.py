@@ -12,7 +12,8 @@ from gymnasium import spaces
 
 from netgym.config import SceneConfig, load_scene
 from netgym.launch import Thrower, action_to_velocity, opening_centre, opening_miss_distance, sample_thrower
-from netgym.physics.simulator import Simulator, ThrowResult
+from netgym.physics.simulator import Simulator
+from netgym.physics.throws import ThrowResult
 
 REWARD_MODES = ("sparse", "shaped")
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e

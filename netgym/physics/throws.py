@@ -1,0 +1,211 @@
+"""Throws: plans that simulate one ball until its outcome is decided (the fast path).
+
+A throw starts from a net at rest. Its fast path models only what the scene needs: the ball
+flies in closed form while it is clear of the net, poles and other balls (the net, at rest,
+is not integrated then); once it comes near, everything is integrated with the scene's
+integrator; the throw ends as soon as its outcome is decided: the ball flies away from
+everything, cannot reach the opening any more (energy bound), or is at rest. ``fast=False``
+integrates everything from launch to the time limit instead, as a reference.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Generator
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from netgym.errors import SimulationDivergedError
+from netgym.physics import contacts, flight, stepping
+from netgym.physics.model import BALL_GROUND
+
+if TYPE_CHECKING:
+    from netgym.physics.simulator import Simulator
+
+Plan = Generator[tuple[int, int, float], None, Any]
+"""A simulation plan: yields (n_steps, integrator code, dt) requests, returns its result."""
+
+CHUNK_SECONDS = 0.01          # simulated time between two checks of a throw's outcome
+REST_WINDOW = 0.1             # s during which a ball and its surroundings must stay slow to be "at rest"
+REST_REACH = 0.2              # m around a ball within which moving bodies keep it from being at rest
+CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
+AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
+SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
+
+
+@dataclass(frozen=True)
+class ThrowResult:
+    """Outcome of one throw.
+
+    :param captured: the ball came in through the opening and is inside the net.
+    :param entered: the ball's centre crossed the opening inwards (and did not leave through it).
+    :param final_position: ball centre when the outcome was decided (m).
+    :param final_velocity: ball velocity then (m/s).
+    :param time: simulated seconds from launch to the decision.
+    :param substeps: integration substeps spent (0 when decided in closed form).
+    :param reason: ``"flies_away"``, ``"cannot_reach_opening"``, ``"at_rest"`` or ``"time_limit"``.
+    """
+
+    captured: bool
+    entered: bool
+    final_position: np.ndarray
+    final_velocity: np.ndarray
+    time: float
+    substeps: int
+    reason: str
+
+
+class ThrowPlanning:
+    """Throw logic of :class:`~netgym.physics.simulator.Simulator` (a mixin: it uses the
+    simulator's state, model, relaxation and plan driver)."""
+
+    def _opening_lowest_z(self) -> float:
+        o = self.model.geometry.opening
+        if o.axis == 2:
+            return o.plane
+        return o.tangent_lower[o.tangent_axes.index(2)]
+
+    def _ground(self) -> flight.Ground:
+        m = self.model
+        return flight.Ground(m.ball_radius, m.gravity, m.contact[BALL_GROUND, 0],
+                             m.contact[BALL_GROUND, 1], m.restitution_threshold)
+
+    def _clearance(self, row: int) -> float:
+        """Distance the ball in ``row`` can travel before it could touch the net, a pole or
+        another ball (the net held still)."""
+        m = self.model
+        return contacts.clearance(self.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
+
+    def _local_speed(self, row: int) -> float:
+        """Largest speed of the ball in ``row`` and of the bodies that could touch it soon
+        (within REST_REACH of its surface): what decides whether it has come to rest."""
+        x, v = self.state.x, self.state.v
+        near = np.linalg.norm(x - x[row], axis=1) < 2.0 * self.model.ball_radius + REST_REACH
+        return float(np.abs(v[near]).max(initial=0.0))
+
+    def _region(self, row: int, margin: float) -> tuple[np.ndarray, np.ndarray]:
+        """Bounding box of the net, poles and the other balls, grown by the ball radius + margin."""
+        m = self.model
+        pts = np.vstack([np.delete(self.state.x, row, axis=0), m.poles[:, :3], m.poles[:, 3:6]])
+        grow = m.ball_radius + float(m.poles[:, 6].max(initial=0.0)) + margin
+        return pts.min(axis=0) - grow, pts.max(axis=0) + grow
+
+    def throw(self, position: Any, velocity: Any, fast: bool = True,
+              observer: Callable[["Simulator"], None] | None = None, frame_dt: float | None = None) -> ThrowResult:
+        """Launch a ball and simulate until its outcome is decided.
+
+        The net is first brought to rest if it still moves. A captured ball stays in the scene;
+        a missed one is removed. With ``fast=False`` everything is integrated from launch to the
+        time limit (the reference the fast path is tested against). ``observer(sim)`` is called
+        at least every ``frame_dt`` simulated seconds (for recording frames).
+        """
+        return self.run(self.throw_plan(position, velocity, fast, frame_dt), observer)
+
+    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frame_dt: float | None = None) -> Plan:
+        """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
+        vector_argument(position, "position")  # fail on bad input before any work
+        vector_argument(velocity, "velocity")
+        if self._awake:
+            yield from self.relax_plan()
+        start = self.state.copy()
+        ball = self.launch_ball(position, velocity)
+        try:
+            result = yield from self._throw_steps(ball, fast, frame_dt)
+        except SimulationDivergedError:
+            self.state.restore(start)
+            raise
+        if not result.captured:
+            self.remove_ball(ball)
+        return result
+
+    def _throw_steps(self, ball: int, fast: bool, frame_dt: float | None) -> Plan:
+        m, s, sim = self.model, self.state, self.config.simulation
+        row = m.n_net + ball
+        t0, substeps0 = s.time, self.substeps
+        deadline = t0 + sim.time_limit
+        chunk = max(1, round(min(CHUNK_SECONDS, frame_dt or math.inf) / sim.dt))
+        ground = self._ground()
+        reference_energy = self._potential_without(row)
+        rest_since: float | None = None
+        while True:
+            if fast and not self._awake:
+                reason = yield from self._fly(row, deadline, ground, frame_dt)
+                if reason is not None:
+                    break
+                self._awake = True
+            elif round((deadline - s.time) / sim.dt) > 0:
+                yield min(chunk, round((deadline - s.time) / sim.dt)), self._integrator, sim.dt
+            if deadline - s.time < 0.5 * sim.dt:
+                reason = "time_limit"
+                break
+            if not fast:
+                continue
+            still = self._local_speed(row) < sim.rest_speed
+            rest_since = (s.time if rest_since is None else rest_since) if still else None
+            reason = self._decided(row, ground, reference_energy, rest_since)
+            if reason is not None:
+                break
+            others = np.arange(s.x.shape[0]) != row
+            if float(np.abs(s.v[others]).max(initial=0.0)) < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
+                s.v[others] = 0.0
+                self._awake = False
+        entered = bool(s.entered[ball])
+        return ThrowResult(captured=entered and self._inside_box(s.x[row]), entered=entered,
+                           final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
+                           time=s.time - t0, substeps=self.substeps - substeps0, reason=reason)
+
+    def _fly(self, row: int, deadline: float, ground: flight.Ground, frame_dt: float | None) -> Plan:
+        """Move the ball in closed form while it is clear of everything. Returns a decision
+        reason, or None when the ball came close enough to need simulating."""
+        s, g = self.state, abs(self.model.gravity)
+        lo, hi = self._region(row, CLEARANCE)
+        while True:
+            if flight.entry_time(s.x[row], s.v[row], lo, hi, ground, deadline - s.time) is None:
+                return "flies_away"
+            gap = self._clearance(row)
+            if gap <= CLEARANCE:
+                return None
+            speed = float(np.linalg.norm(s.v[row]))
+            tau = (gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g))
+            tau = min(tau, deadline - s.time, frame_dt or math.inf)
+            before = s.x[self.model.n_net:].copy()
+            s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, ground)
+            stepping.update_entered(s.x, before, self.model.n_net, s.entered, self.model.opening)
+            s.time += tau
+            if frame_dt is not None:
+                yield 0, self._integrator, self._dt
+            if deadline - s.time < 0.5 * self.config.simulation.dt:
+                return "time_limit"
+
+    def _potential_without(self, row: int) -> float:
+        e = self.energy()
+        s = self.state
+        return e.spring + e.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
+
+    def _decided(self, row: int, ground: flight.Ground, reference_energy: float,
+                 rest_since: float | None) -> str | None:
+        s, m = self.state, self.model
+        lo, hi = self._region(row, AWAKE_MARGIN)
+        p = s.x[row]
+        outside = bool(np.any(p < lo) or np.any(p > hi))
+        if outside and flight.entry_time(p, s.v[row], lo, hi, ground, math.inf) is None:
+            return "flies_away"
+        if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
+            return "at_rest"
+        free = self.energy().kinetic + max(0.0, self._potential_without(row) - reference_energy)
+        reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
+        if reach < self._opening_lowest_z():
+            return "cannot_reach_opening"
+        return None
+
+
+def vector_argument(value: Any, name: str) -> np.ndarray:
+    """``value`` as a finite float64 3-vector, or a ValueError naming ``name``."""
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (3,):
+        raise ValueError(f"{name} must have shape (3,), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+    return arr
