@@ -37,7 +37,7 @@ signed = st.floats(-1.0, 1.0)
 
 @pytest.mark.parametrize("scene", ["basket", "goal"])
 @given(place=st.tuples(unit, unit, unit), action=st.tuples(signed, signed, signed))
-def test_random_throws_stay_finite_and_consistent(scene: str, place, action) -> None:
+def test_random_throws_are_finite_consistent_and_deterministic(scene: str, place, action) -> None:
     sim = _sim(scene)
     position, velocity = _launch(sim, place, action)
     result = sim.throw(position, velocity)
@@ -47,17 +47,10 @@ def test_random_throws_stay_finite_and_consistent(scene: str, place, action) -> 
     assert result.captured == result.entered
     assert result.time <= sim.config.simulation.time_limit + 0.5 * sim.config.simulation.dt
     assert sim.n_balls == int(result.captured)
-
-
-@pytest.mark.parametrize("scene", ["basket", "goal"])
-@given(place=st.tuples(unit, unit, unit), action=st.tuples(signed, signed, signed))
-def test_outcomes_are_deterministic(scene: str, place, action) -> None:
-    first = _sim(scene)
-    position, velocity = _launch(first, place, action)
-    a = first.throw(position, velocity)
-    b = _sim(scene).throw(position, velocity)
-    assert a.captured == b.captured and a.reason == b.reason and a.substeps == b.substeps
-    assert np.array_equal(a.final_position, b.final_position)
+    # the same throw from the same state gives the same outcome, bit for bit
+    again = _sim(scene).throw(position, velocity)
+    assert (again.captured, again.reason, again.substeps) == (result.captured, result.reason, result.substeps)
+    assert np.array_equal(again.final_position, result.final_position)
 
 
 @pytest.mark.parametrize("scene", ["basket", "goal"])

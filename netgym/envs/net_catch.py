@@ -230,7 +230,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if self.render_mode == "rgb_array_list":
             frames, self._frames = self._frames, []
             return frames
-        renderer.show(renderer.draw(self.sim))
+        self._renderer_show()
         return None
 
     def close(self) -> None:

@@ -127,7 +127,7 @@ class ThrowPlanning:
         deadline = t0 + sim.time_limit
         chunk = max(1, round(min(CHUNK_SECONDS, frame_dt or math.inf) / sim.dt))
         ground = self._ground()
-        reference_energy = self._potential_without(row)
+        reference_energy = self._potential_without(row, self.energy())
         rest_since: float | None = None
         while True:
             if fast and not self._awake:
@@ -179,10 +179,10 @@ class ThrowPlanning:
             if deadline - s.time < 0.5 * self.config.simulation.dt:
                 return "time_limit"
 
-    def _potential_without(self, row: int) -> float:
-        e = self.energy()
+    def _potential_without(self, row: int, energy: Any) -> float:
+        """Potential energy of everything but the ball in ``row`` (``energy``: the current one)."""
         s = self.state
-        return e.spring + e.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
+        return energy.spring + energy.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
 
     def _decided(self, row: int, ground: flight.Ground, reference_energy: float,
                  rest_since: float | None) -> str | None:
@@ -194,7 +194,8 @@ class ThrowPlanning:
             return "flies_away"
         if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
             return "at_rest"
-        free = self.energy().kinetic + max(0.0, self._potential_without(row) - reference_energy)
+        energy = self.energy()  # one evaluation per check: kinetic and potential together
+        free = energy.kinetic + max(0.0, self._potential_without(row, energy) - reference_energy)
         reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
         if reach < self._opening_lowest_z():
             return "cannot_reach_opening"
