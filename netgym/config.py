@@ -18,7 +18,7 @@ from typing import Any, Mapping
 
 from netgym.errors import ConfigError
 
-INTEGRATORS = ("explicit_euler", "symplectic_euler", "rk4", "implicit_euler")
+INTEGRATORS = ("explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "imex_euler")
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
 BUILTIN_SCENES = ("basket", "goal")
 

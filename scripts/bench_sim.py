@@ -26,6 +26,7 @@ SETTINGS = {  # integrator -> dt used for the benchmark
     "symplectic_euler": 5e-4,
     "rk4": 1e-3,
     "implicit_euler": 5e-3,
+    "imex_euler": 2e-3,
 }
 IMPACT = {  # scene -> (ball start, velocity): straight into the net bottom / back net
     "basket": ([0.0, 0.0, 2.0], [0.0, 0.0, -10.0]),

@@ -45,8 +45,10 @@ SWEEPS = {
     "symplectic_euler": [1e-4, 2e-4, 2.5e-4, 5e-4],
     "rk4": [1e-4, 2e-4, 5e-4, 1e-3],
     "implicit_euler": [5e-4, 1e-3, 2e-3, 5e-3, 1e-2],
+    "imex_euler": [5e-4, 1e-3, 2e-3, 3e-3, 5e-3],
 }
-DEFAULT = ("symplectic_euler", 5e-4)
+DEFAULT = ("imex_euler", 2e-3)
+PEER_SETTING = ("symplectic_euler", 5e-4)  # the peers run the same explicit method at the same dt
 
 
 @dataclass(frozen=True)
@@ -238,7 +240,7 @@ def mujoco_peer(dt: float, seconds: float) -> tuple[float, np.ndarray] | None:
 def peers(quick: bool) -> list[dict]:
     """netgym and the NumPy peer on the same released net at the same dt, same reference."""
     seconds = 0.05 if quick else 0.2
-    dt = DEFAULT[1]
+    dt = PEER_SETTING[1]
 
     def released(integrator: str, step: float) -> tuple[float, np.ndarray]:
         sim = Simulator("basket", {"simulation.integrator": integrator, "simulation.dt": step}, check_stability=False)
@@ -250,7 +252,7 @@ def peers(quick: bool) -> list[dict]:
         return round(seconds / step) / (time.perf_counter() - start), sim.state.x.copy()
 
     _, reference = released(*REFERENCE)
-    ours_rate, ours = released(*DEFAULT)
+    ours_rate, ours = released(*PEER_SETTING)
     peer_rate, peer = numpy_peer(dt, seconds)
 
     def rms(x: np.ndarray) -> float:
@@ -372,7 +374,8 @@ def to_markdown(wp: list[dict], outcomes: list[dict], stability: list[dict], pee
         "",
         "Largest dt at which 1 s of the net (perturbed by 1 cm noise from rest, no ball) stays below the "
         "divergence speed, by bisection on a log scale between 0.01 ms and 50 ms, beside the linear estimate "
-        "(spectral radius of each method's step on the net's fastest mode, found by power iteration).",
+        "(spectral radius of each method's step on the net's fastest mode, found by power iteration; for "
+        "imex_euler, whose dampers are implicit, the estimate counts the elastic forces alone).",
         "",
         "| scene | integrator | bisection | linear estimate |",
         "|---|---|---:|---:|",
@@ -385,7 +388,7 @@ def to_markdown(wp: list[dict], outcomes: list[dict], stability: list[dict], pee
             "Environment (`scripts/bench_env.py`):", "", env_table, "",
             "## 5. Peers", "",
             "The same net (604 particles, 3250 springs, same masses, springs, dampers, drag and gravity), released "
-            f"from its built shape, {DEFAULT[1] * 1e3:g} ms steps, error against the same rk4 reference after the "
+            f"from its built shape, {PEER_SETTING[1] * 1e3:g} ms steps, error against the same rk4 reference after the "
             "same simulated time. The NumPy version is a straightforward vectorised implementation (gather, "
             "`np.add.at` scatter). MuJoCo (`pip install -e .[bench]`) models each free particle as a body with "
             "three slide joints (joint damping = air drag), each spring as a spatial tendon between two sites "
@@ -430,6 +433,8 @@ def main() -> None:
          f"| native: NetCatchVectorEnv through NetCatchSB3VecEnv | {sb3['native']:.1f} |",
          f"| make_vec_env with SubprocVecEnv | {sb3['subproc']:.1f} |"])
     basket = summaries["basket"]
+    default = next(r for r in outcome_rows if (r["integrator"], r["dt"]) == DEFAULT)
+    explicit = next(r for r in outcome_rows if (r["integrator"], r["dt"]) == PEER_SETTING)
     gains = [
         f"- Fast path (closed-form flight, sleeping net, early decision) over full simulation to the time limit: "
         f"{basket['fast_throws_per_s'] / basket['full_throws_per_s']:.0f}x throws/s on the basket "
@@ -440,6 +445,16 @@ def main() -> None:
         f"{scaling[max(scaling)] / scaling[1]:.2f}x throws/s.",
         "- Substeps only where a ball is near: a free-flying or far ball adds no substeps; the relative-speed bound "
         "counts only particles that can reach a ball within the step.",
+        f"- IMEX Euler (elastic forces explicit, dampers and drag implicit), which the dampers no longer hold below "
+        f"1 ms: the default at {DEFAULT[1] * 1e3:g} ms decides {default['throws_per_s'] / explicit['throws_per_s']:.1f}x "
+        f"the throws/s of {PEER_SETTING[0]} at {PEER_SETTING[1] * 1e3:g} ms ({100 * default['agreement']:.1f}% vs "
+        f"{100 * explicit['agreement']:.1f}% outcome agreement, section 2).",
+        "- Exact ball-to-net clearance (distance to the spring segments instead of the nearest particle less half the "
+        "longest spring) for closed-form flight and for putting the net back to sleep, with the per-check decision "
+        "data (speeds near the ball, bounding box, sleep test) gathered in one numba pass instead of NumPy "
+        "expressions: on 300 throws (seed 0) with symplectic Euler at 0.5 ms, substeps per touching throw 231 -> 116, "
+        "Python time per touching throw 1.57 -> 0.66 ms, touching throws/s 130 -> 263 (measured before and after "
+        "the change that introduced them, same machine).",
     ]
     text = to_markdown(wp, outcome_rows, stability, peer_rows, sim_table, env_table, count, gains)
     if args.quick:

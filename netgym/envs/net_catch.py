@@ -80,7 +80,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | argument | default | meaning |
     |---|---|---|
     | ``scene`` | ``"basket"`` | built-in scene name (``"basket"``, ``"goal"``), TOML path or :class:`SceneConfig` |
-    | ``integrator`` | scene's | ``explicit_euler``, ``symplectic_euler``, ``rk4``, ``implicit_euler`` |
+    | ``integrator`` | scene's | ``explicit_euler``, ``symplectic_euler``, ``rk4``, ``implicit_euler``, ``imex_euler`` |
     | ``dt`` | scene's | integration step (s) |
     | ``balls_per_episode`` | 3 | throws per episode |
     | ``reward_mode`` | ``"sparse"`` | ``"sparse"`` or ``"shaped"`` |

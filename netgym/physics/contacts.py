@@ -207,27 +207,34 @@ def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, thres
 
 @njit(cache=True)
 def clearance(x, n_net, row, radius, segments, poles):
-    """How far the ball in ``row`` can move before it could touch a net particle or spring
-    segment (nearest particle distance, less half the longest segment), a pole or another ball,
-    all held still. Negative when it already touches."""
-    longest = 0.0
+    """How far the ball in ``row`` can move before it could touch a net particle or structural
+    spring segment, a pole or another ball, all held still (exact distances). Negative when it
+    already touches."""
+    cx, cy, cz = x[row, 0], x[row, 1], x[row, 2]
+    nearest = math.inf
+    for k in range(n_net):
+        nearest = min(nearest, (x[k, 0] - cx) ** 2 + (x[k, 1] - cy) ** 2 + (x[k, 2] - cz) ** 2)
     for s in range(segments.shape[0]):
         i = segments[s, 0]
         j = segments[s, 1]
-        longest = max(longest, (x[i, 0] - x[j, 0]) ** 2 + (x[i, 1] - x[j, 1]) ** 2 + (x[i, 2] - x[j, 2]) ** 2)
-    nearest = math.inf
-    for k in range(n_net):
-        nearest = min(nearest, (x[k, 0] - x[row, 0]) ** 2 + (x[k, 1] - x[row, 1]) ** 2 + (x[k, 2] - x[row, 2]) ** 2)
-    gap = math.sqrt(nearest) - radius - 0.5 * math.sqrt(longest)
+        ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
+        len2 = ex * ex + ey * ey + ez * ez
+        if len2 < 1e-24:
+            continue
+        t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
+        t = min(max(t, 0.0), 1.0)
+        nearest = min(nearest, (x[i, 0] + t * ex - cx) ** 2 + (x[i, 1] + t * ey - cy) ** 2
+                      + (x[i, 2] + t * ez - cz) ** 2)
+    gap = math.sqrt(nearest) - radius
     for p in range(poles.shape[0]):
         ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
         ex, ey, ez = poles[p, 3] - ax, poles[p, 4] - ay, poles[p, 5] - az
-        t = ((x[row, 0] - ax) * ex + (x[row, 1] - ay) * ey + (x[row, 2] - az) * ez) / (ex * ex + ey * ey + ez * ez)
+        t = ((cx - ax) * ex + (cy - ay) * ey + (cz - az) * ez) / (ex * ex + ey * ey + ez * ez)
         t = min(max(t, 0.0), 1.0)
-        d = math.sqrt((x[row, 0] - ax - t * ex) ** 2 + (x[row, 1] - ay - t * ey) ** 2 + (x[row, 2] - az - t * ez) ** 2)
+        d = math.sqrt((cx - ax - t * ex) ** 2 + (cy - ay - t * ey) ** 2 + (cz - az - t * ez) ** 2)
         gap = min(gap, d - radius - poles[p, 6])
     for b in range(n_net, x.shape[0]):
         if b != row:
-            d = math.sqrt((x[b, 0] - x[row, 0]) ** 2 + (x[b, 1] - x[row, 1]) ** 2 + (x[b, 2] - x[row, 2]) ** 2)
+            d = math.sqrt((x[b, 0] - cx) ** 2 + (x[b, 1] - cy) ** 2 + (x[b, 2] - cz) ** 2)
             gap = min(gap, d - 2.0 * radius)
     return gap

@@ -76,7 +76,7 @@ class Simulator(ThrowPlanning):
                 f"simulation.dt = {sim.dt:g} s is beyond the linear stability limit "
                 f"{self.stable_dt:.3g} s of {sim.integrator} on this net (highest frequency "
                 f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
-                f"dt <= {self.stable_dt:.3g} s or integrator = \"implicit_euler\"")
+                f"dt <= {self.stable_dt:.3g} s, or integrator = \"imex_euler\" or \"implicit_euler\"")
         self.state = State.at_rest(self.model, self._settled_positions())
         self._rest_state = self.state.copy()
 
@@ -241,7 +241,7 @@ class Simulator(ThrowPlanning):
                 f"{self.config.simulation.divergence_speed:g} m/s or became non-finite) within "
                 f"{n_steps} steps from t = {before.time:g} s; the state was restored. Use a smaller "
                 f"simulation.dt (linear stability limit of {INTEGRATORS[self._integrator]} here: "
-                f"{self.stable_dt:.3g} s) or integrator = \"implicit_euler\"")
+                f"{self.stable_dt:.3g} s), or integrator = \"imex_euler\" or \"implicit_euler\"")
         s.time += n_steps * dt
 
     def _net_modes(self) -> NetModes:

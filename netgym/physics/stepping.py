@@ -10,9 +10,11 @@ from numba import njit, prange
 from netgym.physics.contacts import resolve_contacts
 from netgym.physics.integrators import (
     EXPLICIT_EULER,
+    IMEX_EULER,
     RK4,
     SYMPLECTIC_EULER,
     step_euler,
+    step_imex_euler,
     step_implicit_euler,
     step_rk4,
 )
@@ -130,6 +132,8 @@ def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, co
                            integrator == SYMPLECTIC_EULER)
             elif integrator == RK4:
                 step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
+            elif integrator == IMEX_EULER:
+                step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, h, work, coef)
             else:
                 stats[CG_ITERATIONS] += step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, h,
                                                             cg_tolerance, cg_max_iterations, work, coef)

@@ -20,6 +20,7 @@ import numpy as np
 from netgym.errors import SimulationDivergedError
 from netgym.physics import contacts, flight, stepping
 from netgym.physics.model import BALL_GROUND
+from netgym.physics.surroundings import survey
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator
@@ -78,19 +79,16 @@ class ThrowPlanning:
         m = self.model
         return contacts.clearance(self.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
 
-    def _local_speed(self, row: int) -> float:
-        """Largest speed of the ball in ``row`` and of the bodies that could touch it soon
-        (within REST_REACH of its surface): what decides whether it has come to rest."""
-        x, v = self.state.x, self.state.v
-        near = np.linalg.norm(x - x[row], axis=1) < 2.0 * self.model.ball_radius + REST_REACH
-        return float(np.abs(v[near]).max(initial=0.0))
-
-    def _region(self, row: int, margin: float) -> tuple[np.ndarray, np.ndarray]:
-        """Bounding box of the net, poles and the other balls, grown by the ball radius + margin."""
+    def _survey(self, row: int, margin: float) -> tuple[float, float, np.ndarray, np.ndarray]:
+        """``(local, others, lo, hi)``: the largest speed of the ball in ``row`` and of the bodies
+        that could touch it soon (within REST_REACH of its surface), which decides whether it has
+        come to rest; the largest speed of all other bodies; and the bounding box of the net, poles
+        and other balls grown by the ball radius + pole radius + ``margin``."""
         m = self.model
-        pts = np.vstack([np.delete(self.state.x, row, axis=0), m.poles[:, :3], m.poles[:, 3:6]])
+        box = np.empty(6)
+        local, others = survey(self.state.x, self.state.v, row, 2.0 * m.ball_radius + REST_REACH, m.poles, box)
         grow = m.ball_radius + float(m.poles[:, 6].max(initial=0.0)) + margin
-        return pts.min(axis=0) - grow, pts.max(axis=0) + grow
+        return local, others, box[:3] - grow, box[3:] + grow
 
     def throw(self, position: Any, velocity: Any, fast: bool = True,
               observer: Callable[["Simulator"], None] | None = None, frame_dt: float | None = None) -> ThrowResult:
@@ -142,14 +140,15 @@ class ThrowPlanning:
                 break
             if not fast:
                 continue
-            still = self._local_speed(row) < sim.rest_speed
-            rest_since = (s.time if rest_since is None else rest_since) if still else None
-            reason = self._decided(row, ground, reference_energy, rest_since)
+            local, others, lo, hi = self._survey(row, AWAKE_MARGIN)
+            rest_since = (s.time if rest_since is None else rest_since) if local < sim.rest_speed else None
+            reason = self._decided(row, ground, reference_energy, rest_since, lo, hi)
             if reason is not None:
                 break
-            others = np.arange(s.x.shape[0]) != row
-            if float(np.abs(s.v[others]).max(initial=0.0)) < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
-                s.v[others] = 0.0
+            if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
+                flying = s.v[row].copy()
+                s.v[:] = 0.0
+                s.v[row] = flying
                 self._awake = False
         entered = bool(s.entered[ball])
         return ThrowResult(captured=entered and self._inside_box(s.x[row]), entered=entered,
@@ -160,7 +159,7 @@ class ThrowPlanning:
         """Move the ball in closed form while it is clear of everything. Returns a decision
         reason, or None when the ball came close enough to need simulating."""
         s, g = self.state, abs(self.model.gravity)
-        lo, hi = self._region(row, CLEARANCE)
+        _, _, lo, hi = self._survey(row, CLEARANCE)
         while True:
             if flight.entry_time(s.x[row], s.v[row], lo, hi, ground, deadline - s.time) is None:
                 return "flies_away"
@@ -184,10 +183,11 @@ class ThrowPlanning:
         s = self.state
         return energy.spring + energy.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
 
-    def _decided(self, row: int, ground: flight.Ground, reference_energy: float,
-                 rest_since: float | None) -> str | None:
+    def _decided(self, row: int, ground: flight.Ground, reference_energy: float, rest_since: float | None,
+                 lo: np.ndarray, hi: np.ndarray) -> str | None:
+        """The reason the throw's outcome is decided now, or None (``lo``, ``hi``: the region
+        from :meth:`_survey` with AWAKE_MARGIN)."""
         s, m = self.state, self.model
-        lo, hi = self._region(row, AWAKE_MARGIN)
         p = s.x[row]
         outside = bool(np.any(p < lo) or np.any(p > hi))
         if outside and flight.entry_time(p, s.v[row], lo, hi, ground, math.inf) is None:
