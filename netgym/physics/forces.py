@@ -23,6 +23,17 @@ def spring_axis(x, i, j):
     return length, dx * inv, dy * inv, dz * inv
 
 
+@njit(cache=True, inline="always")
+def add_pair_force(f, i, j, fx, fy, fz):
+    """Add the force (fx, fy, fz) to body i and its reaction to body j."""
+    f[i, 0] += fx
+    f[i, 1] += fy
+    f[i, 2] += fz
+    f[j, 0] -= fx
+    f[j, 1] -= fy
+    f[j, 2] -= fz
+
+
 @njit(cache=True)
 def spring_forces(x, v, springs, params, f):
     """Add every spring's force to ``f`` (n, 3)."""
@@ -34,12 +45,7 @@ def spring_forces(x, v, springs, params, f):
             continue
         closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
         mag = -params[s, 1] * (length - params[s, 0]) - params[s, 2] * closing
-        f[i, 0] += mag * ux
-        f[i, 1] += mag * uy
-        f[i, 2] += mag * uz
-        f[j, 0] -= mag * ux
-        f[j, 1] -= mag * uy
-        f[j, 2] -= mag * uz
+        add_pair_force(f, i, j, mag * ux, mag * uy, mag * uz)
 
 
 @njit(cache=True)

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from netgym.physics.forces import accelerations, spring_axis, spring_forces
+from netgym.physics.forces import accelerations, add_pair_force, spring_axis, spring_forces
 
 EXPLICIT_EULER, SYMPLECTIC_EULER, RK4, IMPLICIT_EULER, IMEX_EULER = range(5)
 WORK_SLOTS = 7
@@ -72,12 +72,7 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, co
         j = springs[s, 1]
         length, ux, uy, uz = spring_axis(x, i, j)
         mag = -params[s, 1] * (length - params[s, 0])
-        a[i, 0] += mag * ux
-        a[i, 1] += mag * uy
-        a[i, 2] += mag * uz
-        a[j, 0] -= mag * ux
-        a[j, 1] -= mag * uy
-        a[j, 2] -= mag * uz
+        add_pair_force(a, i, j, mag * ux, mag * uy, mag * uz)
         hk = half * params[s, 2]
         share = hk / (1.0 + hk * (inv_mass[i] + inv_mass[j]))
         coef[s, 0], coef[s, 1], coef[s, 2] = ux, uy, uz
@@ -156,15 +151,7 @@ def _system_product(y, inv_mass, mass_scale, springs, coef, out):
         dz = y[i, 2] - y[j, 2]
         ux, uy, uz, iso, axial = coef[s, 0], coef[s, 1], coef[s, 2], coef[s, 3], coef[s, 4]
         along = axial * (ux * dx + uy * dy + uz * dz)
-        px = iso * dx + along * ux
-        py = iso * dy + along * uy
-        pz = iso * dz + along * uz
-        out[i, 0] += px
-        out[i, 1] += py
-        out[i, 2] += pz
-        out[j, 0] -= px
-        out[j, 1] -= py
-        out[j, 2] -= pz
+        add_pair_force(out, i, j, iso * dx + along * ux, iso * dy + along * uy, iso * dz + along * uz)
     for k in range(y.shape[0]):
         if inv_mass[k] == 0.0:
             out[k, 0] = 0.0
