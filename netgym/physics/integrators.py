@@ -12,8 +12,8 @@ rk4                   4      classical Runge-Kutta, four force evaluations per s
 implicit_euler        1      linearised backward Euler (Baraff-Witkin), matrix-free
                              conjugate gradients; stable at large dt
 imex_euler            1      symplectic Euler on elastic forces and gravity, dampers and air
-                             drag implicit (one Gauss-Seidel sweep of exact per-spring damper
-                             solves): the dampers no longer limit dt
+                             drag implicit (a symmetric Gauss-Seidel sweep of exact per-spring
+                             damper solves): the dampers no longer limit dt
 ====================  =====  ===============================================================
 
 Every kernel takes a ``work`` array of shape (WORK_SLOTS, n, 3) and a ``coef`` array of
