@@ -1,0 +1,7 @@
+"""The simulator: net building, numba kernels, stepping, throws."""
+
+from pathlib import Path
+
+from netgym.physics.kernel_cache import drop_stale_kernels
+
+drop_stale_kernels(Path(__file__).parent)

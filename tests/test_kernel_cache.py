@@ -1,0 +1,70 @@
+"""numba's cache must not run a kernel compiled against an older version of a kernel it calls."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+from netgym.physics.kernel_cache import STAMP, drop_stale_kernels
+
+CALLER = """
+from numba import njit
+from pkg.callee import value
+
+@njit(cache=True)
+def call():
+    return value()
+"""
+CALLEE = """
+from numba import njit
+
+@njit(cache=True)
+def value():
+    return {}
+"""
+RUN = "from pathlib import Path; import pkg.kernel_cache as c; {}from pkg.caller import call; print(call())"
+
+
+def _write_package(root: Path, returned: int) -> Path:
+    pkg = root / "pkg"
+    pkg.mkdir(exist_ok=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "kernel_cache.py").write_text(Path(__file__).parents[1].joinpath("netgym/physics/kernel_cache.py").read_text())
+    (pkg / "caller.py").write_text(textwrap.dedent(CALLER))
+    (pkg / "callee.py").write_text(textwrap.dedent(CALLEE.format(returned)))
+    return pkg
+
+
+def _call(root: Path, guarded: bool) -> str:
+    guard = "c.drop_stale_kernels(Path('pkg')); " if guarded else ""
+    done = subprocess.run([sys.executable, "-c", RUN.format(guard)], cwd=root, capture_output=True, text=True,
+                          timeout=300, check=True)
+    return done.stdout.strip()
+
+
+def test_without_the_guard_numba_runs_a_stale_callee(tmp_path: Path) -> None:
+    """The hazard itself: the cached caller keeps the callee's old body."""
+    _write_package(tmp_path, 1)
+    assert _call(tmp_path, guarded=False) == "1"
+    _write_package(tmp_path, 2)
+    assert _call(tmp_path, guarded=False) == "1"
+
+
+def test_the_guard_recompiles_every_kernel_after_any_source_change(tmp_path: Path) -> None:
+    pkg = _write_package(tmp_path, 1)
+    assert _call(tmp_path, guarded=True) == "1"
+    assert (pkg / "__pycache__" / STAMP).is_file()
+    cached = sorted(p.name for p in (pkg / "__pycache__").glob("*.nb[ic]"))
+    assert cached  # the kernels were cached ...
+    assert _call(tmp_path, guarded=True) == "1"  # ... and an unchanged package keeps them
+    assert sorted(p.name for p in (pkg / "__pycache__").glob("*.nb[ic]")) == cached
+    _write_package(tmp_path, 2)
+    assert _call(tmp_path, guarded=True) == "2"
+
+
+def test_a_folder_that_cannot_hold_a_cache_is_left_alone(tmp_path: Path) -> None:
+    missing = tmp_path / "no_such_folder"
+    drop_stale_kernels(missing)
+    assert not missing.exists()
