@@ -80,10 +80,10 @@ class ThrowPlanning:
         return contacts.clearance(self.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
 
     def _survey(self, row: int, margin: float) -> tuple[float, float, np.ndarray, np.ndarray]:
-        """``(local, others, lo, hi)``: the largest speed of the ball in ``row`` and of the bodies
-        that could touch it soon (within REST_REACH of its surface), which decides whether it has
-        come to rest; the largest speed of all other bodies; and the bounding box of the net, poles
-        and other balls grown by the ball radius + pole radius + ``margin``."""
+        """``(local, others, lo, hi)``: the largest velocity component of the ball in ``row`` and of
+        the bodies that could touch it soon (within REST_REACH of its surface), which decides
+        whether it has come to rest; the same over all other bodies; and the bounding box of the
+        net, poles and other balls grown by the ball radius + pole radius + ``margin``."""
         m = self.model
         box = np.empty(6)
         local, others = survey(self.state.x, self.state.v, row, 2.0 * m.ball_radius + REST_REACH, m.poles, box)
