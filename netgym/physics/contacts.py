@@ -23,6 +23,7 @@ import math
 from numba import njit
 
 from netgym.physics.model import BALL_BALL, BALL_GROUND, BALL_NET, BALL_POLE, NET_GROUND
+from netgym.physics.rows import add_scaled
 
 
 @njit(cache=True)
@@ -41,16 +42,10 @@ def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, f
         return
     # position: remove the overlap
     lam = depth / total
-    x[a, 0] -= wa * lam * nx
-    x[a, 1] -= wa * lam * ny
-    x[a, 2] -= wa * lam * nz
-    x[i, 0] += wi * lam * nx
-    x[i, 1] += wi * lam * ny
-    x[i, 2] += wi * lam * nz
+    add_scaled(x, a, -(wa * lam), nx, ny, nz)
+    add_scaled(x, i, wi * lam, nx, ny, nz)
     if j != i:
-        x[j, 0] += wj * lam * nx
-        x[j, 1] += wj * lam * ny
-        x[j, 2] += wj * lam * nz
+        add_scaled(x, j, wj * lam, nx, ny, nz)
     # velocity of the point relative to a
     rx = (1.0 - t) * v[i, 0] + t * v[j, 0] - v[a, 0]
     ry = (1.0 - t) * v[i, 1] + t * v[j, 1] - v[a, 1]
@@ -71,25 +66,17 @@ def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, f
     px = jn * nx - jt * tx
     py = jn * ny - jt * ty
     pz = jn * nz - jt * tz
-    v[a, 0] -= wa * px
-    v[a, 1] -= wa * py
-    v[a, 2] -= wa * pz
-    v[i, 0] += wi * px
-    v[i, 1] += wi * py
-    v[i, 2] += wi * pz
+    add_scaled(v, a, -wa, px, py, pz)
+    add_scaled(v, i, wi, px, py, pz)
     if j != i:
-        v[j, 0] += wj * px
-        v[j, 1] += wj * py
-        v[j, 2] += wj * pz
+        add_scaled(v, j, wj, px, py, pz)
 
 
 @njit(cache=True)
 def _static_response(x, v, k, nx, ny, nz, depth, restitution, friction, threshold):
     """Resolve a contact of body ``k`` with an immovable obstacle; ``n`` points out of the
     obstacle towards ``k``."""
-    x[k, 0] += depth * nx
-    x[k, 1] += depth * ny
-    x[k, 2] += depth * nz
+    add_scaled(x, k, depth, nx, ny, nz)
     closing = v[k, 0] * nx + v[k, 1] * ny + v[k, 2] * nz
     if closing >= 0.0:
         return

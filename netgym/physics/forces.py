@@ -11,6 +11,8 @@ import math
 
 from numba import njit
 
+from netgym.physics.rows import add_pair_force
+
 
 @njit(cache=True, inline="always")
 def spring_axis(x, i, j):
@@ -21,17 +23,6 @@ def spring_axis(x, i, j):
     length = math.sqrt(dx * dx + dy * dy + dz * dz)
     inv = 1.0 / length if length > 1e-12 else 0.0
     return length, dx * inv, dy * inv, dz * inv
-
-
-@njit(cache=True, inline="always")
-def add_pair_force(f, i, j, fx, fy, fz):
-    """Add the force (fx, fy, fz) to body i and its reaction to body j."""
-    f[i, 0] += fx
-    f[i, 1] += fy
-    f[i, 2] += fz
-    f[j, 0] -= fx
-    f[j, 1] -= fy
-    f[j, 2] -= fz
 
 
 @njit(cache=True)

@@ -25,7 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from netgym.physics.forces import accelerations, add_pair_force, spring_axis, spring_forces
+from netgym.physics.forces import accelerations, spring_axis, spring_forces
+from netgym.physics.rows import add_pair_force, add_scaled
 
 EXPLICIT_EULER, SYMPLECTIC_EULER, RK4, IMPLICIT_EULER, IMEX_EULER = range(5)
 WORK_SLOTS = 7
@@ -91,19 +92,11 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, co
         j = springs[s, 1]
         ux, uy, uz = coef[s, 0], coef[s, 1], coef[s, 2]
         closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
-        di = closing * coef[s, 3]
-        dj = closing * coef[s, 4]
-        v[i, 0] -= di * ux
-        v[i, 1] -= di * uy
-        v[i, 2] -= di * uz
-        v[j, 0] += dj * ux
-        v[j, 1] += dj * uy
-        v[j, 2] += dj * uz
+        add_scaled(v, i, -(closing * coef[s, 3]), ux, uy, uz)
+        add_scaled(v, j, closing * coef[s, 4], ux, uy, uz)
     for k in range(x.shape[0]):
         if inv_mass[k] > 0.0:
-            x[k, 0] += dt * v[k, 0]
-            x[k, 1] += dt * v[k, 1]
-            x[k, 2] += dt * v[k, 2]
+            add_scaled(x, k, dt, v[k, 0], v[k, 1], v[k, 2])
 
 
 @njit(cache=True)
@@ -207,12 +200,8 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tole
         ry = v[i, 1] - v[j, 1]
         rz = v[i, 2] - v[j, 2]
         along = (dt * dt * ks - iso) * (ux * rx + uy * ry + uz * rz)
-        f[i, 0] -= (iso * rx + along * ux) / dt
-        f[i, 1] -= (iso * ry + along * uy) / dt
-        f[i, 2] -= (iso * rz + along * uz) / dt
-        f[j, 0] += (iso * rx + along * ux) / dt
-        f[j, 1] += (iso * ry + along * uy) / dt
-        f[j, 2] += (iso * rz + along * uz) / dt
+        add_pair_force(f, j, i, (iso * rx + along * ux) / dt, (iso * ry + along * uy) / dt,
+                       (iso * rz + along * uz) / dt)
     # r = rhs - A dv with dv = 0 initially; rhs = dt * f (already holds f + dt K v)
     for k in range(n):
         free = inv_mass[k] > 0.0
