@@ -17,8 +17,9 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from netgym.errors import ConfigError
+from netgym.physics.kinds import Integrator
 
-INTEGRATORS = ("explicit_euler", "symplectic_euler", "rk4", "implicit_euler", "imex_euler")
+INTEGRATORS = Integrator.labels()
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
 BUILTIN_SCENES = ("basket", "goal")
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.config import ThrowConfig
-from netgym.physics.net import Opening
+from netgym.physics.opening import Opening
 
 
 @dataclass(frozen=True)
@@ -39,18 +39,9 @@ class Thrower:
         return math.radians(self.bearing) + math.pi
 
 
-def opening_centre(opening: Opening) -> np.ndarray:
-    """Centre of the opening rectangle."""
-    centre = np.zeros(3)
-    centre[opening.axis] = opening.plane
-    for axis, lo, hi in zip(opening.tangent_axes, opening.tangent_lower, opening.tangent_upper):
-        centre[axis] = 0.5 * (lo + hi)
-    return centre
-
-
 def sample_thrower(cfg: ThrowConfig, opening: Opening, rng: np.random.Generator) -> Thrower:
     """Draw a thrower uniformly within the scene's distance, bearing and height ranges."""
-    centre = opening_centre(opening)
+    centre = opening.centre
     return Thrower(distance=float(rng.uniform(*cfg.distance)), bearing=float(rng.uniform(*cfg.bearing)),
                    height=float(rng.uniform(*cfg.height)), centre=(float(centre[0]), float(centre[1])))
 
@@ -85,15 +76,6 @@ def velocity_to_action(velocity: np.ndarray, thrower: Thrower, cfg: ThrowConfig)
     return np.array([from_range(speed, cfg.speed), from_range(elevation, cfg.elevation), from_range(offset, cfg.azimuth)])
 
 
-def _distance_to_rectangle(points: np.ndarray, opening: Opening) -> np.ndarray:
-    """Distances from points (k, 3) to the opening rectangle."""
-    nearest = points.copy()
-    nearest[:, opening.axis] = opening.plane
-    for axis, lo, hi in zip(opening.tangent_axes, opening.tangent_lower, opening.tangent_upper):
-        nearest[:, axis] = np.clip(points[:, axis], lo, hi)
-    return np.linalg.norm(points - nearest, axis=1)
-
-
 def opening_miss_distance(position: np.ndarray, velocity: np.ndarray, opening: Opening, gravity: float,
                           radius: float, samples: int = 256) -> float:
     """Closest distance between the ball's launch parabola (until it reaches the ground) and
@@ -106,4 +88,4 @@ def opening_miss_distance(position: np.ndarray, velocity: np.ndarray, opening: O
         landing = 10.0
     t = np.linspace(0.0, max(landing, 0.0), samples)[:, None]
     points = p + v * t + np.array([0.0, 0.0, 0.5 * gravity]) * t * t
-    return float(_distance_to_rectangle(points, opening).min())
+    return float(opening.distance(points).min())

@@ -57,7 +57,7 @@ def scene_camera(sim: Simulator, width: int, height: int) -> Camera:
     """A camera that frames the scene's net, looking into its opening."""
     lower, upper = np.array(sim.config.net.lower), np.array(sim.config.net.upper)
     target = 0.5 * (lower + upper)
-    opening = sim.model.geometry.opening
+    opening = sim.opening
     if opening.axis == 2:
         direction = np.array([0.7, -1.0, 0.9])
     else:

@@ -9,8 +9,11 @@ import numpy as np
 import pytest
 
 from netgym.config import FACES, load_scene
-from netgym.physics.net import BENDING, SHEAR, STRUCTURAL, build_net
+from netgym.physics.kinds import SpringKind
+from netgym.physics.net import build_net
 from netgym.physics.simulator import Simulator
+
+STRUCTURAL, SHEAR, BENDING = SpringKind
 
 
 def _face_counts(a: int, b: int) -> dict[int, int]:

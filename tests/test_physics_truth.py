@@ -8,10 +8,12 @@ import math
 import numpy as np
 import pytest
 
-from netgym.config import INTEGRATORS
 from netgym.errors import UnstableTimeStepError
 from netgym.physics import flight, stepping
-from netgym.physics.integrators import workspace
+from netgym.physics.integrators import Scratch
+from netgym.physics.kinds import Contact, Integrator
+from netgym.physics.model import KernelModel, Settings
+from netgym.physics.opening import Opening
 from netgym.physics.simulator import Simulator
 
 # a small net hung high above the ground: it swings under gravity without touching anything
@@ -26,7 +28,7 @@ def lifted_net(integrator: str, dt: float, **extra: object) -> Simulator:
     return sim
 
 
-@pytest.mark.parametrize("integrator", INTEGRATORS)
+@pytest.mark.parametrize("integrator", Integrator.labels())
 def test_free_flight_matches_the_parabola(integrator: str) -> None:
     sim = Simulator("basket", {"simulation.integrator": integrator, "simulation.dt": 5e-4})
     p0, v0 = np.array([30.0, -20.0, 2.0]), np.array([-3.0, 4.0, 12.0])
@@ -63,12 +65,15 @@ def _oscillator(integrator: int, dt: float, t_end: float, ks: float, kd: float, 
     inv_mass = np.array([0.0, 1.0 / m])
     springs = np.array([[0, 1]])
     params = np.array([[rest, ks, kd]])
-    work, coef = workspace(2, 1)
-    stats = np.zeros(2)
-    status = stepping.advance(
-        x, v, inv_mass, np.zeros(0, dtype=np.int8), 2, springs, params, np.zeros((0, 2), dtype=np.int64),
-        np.zeros((0, 7)), np.zeros((5, 2)), 0.0, 0.0, 0.0, 0.1, np.array([2, 1, 100.0, 0, 1, -1, 1, -1, 1.0]),
-        integrator, dt, round(t_end / dt), 0.25, 1e-13, 500, 1e6, work, coef, stats)
+    far_away = Opening(axis=2, sign=1, plane=100.0, tangent_axes=(0, 1), tangent_lower=(-1.0, -1.0),
+                       tangent_upper=(1.0, 1.0))
+    model = KernelModel(n_net=2, springs=springs, spring_params=params, segments=np.zeros((0, 2), dtype=np.int64),
+                        poles=np.zeros((0, 7)), contact=np.zeros((len(Contact), 2)), restitution_threshold=0.0,
+                        gravity=0.0, drag=0.0, ball_radius=0.1, opening=far_away.kernel_array())
+    settings = Settings(integrator=integrator, dt=dt, max_travel=0.25, cg_tolerance=1e-13, cg_max_iterations=500,
+                        divergence_speed=1e6)
+    status = stepping.advance(x, v, inv_mass, np.zeros(0, dtype=np.int8), model, settings, round(t_end / dt),
+                              Scratch.sized(2, 1), stepping.new_counters())
     assert status == stepping.OK
     return x[1, 0] - rest
 
@@ -79,15 +84,15 @@ def _oscillator_exact(t: float, ks: float, kd: float, m: float, amp: float) -> f
     return math.exp(-gamma * t) * (amp * math.cos(wd * t) + gamma * amp / wd * math.sin(wd * t))
 
 
-@pytest.mark.parametrize("integrator", range(len(INTEGRATORS)))
-def test_spring_mass_oscillator_matches_the_analytic_solution(integrator: int) -> None:
+@pytest.mark.parametrize("integrator", list(Integrator))
+def test_spring_mass_oscillator_matches_the_analytic_solution(integrator: Integrator) -> None:
     # t_end avoids 1.0 s, where the first-order error term of IMEX Euler happens to vanish
     ks, kd, m, amp, t_end = 400.0, 2.0, 1.0, 0.1, 0.83
     exact = _oscillator_exact(t_end, ks, kd, m, amp)
     dts = (1e-3, 5e-4)
     errors = [abs(_oscillator(integrator, dt, t_end, ks, kd, m, amp) - exact) for dt in dts]
     omega = math.sqrt(ks / m)
-    if INTEGRATORS[integrator] == "rk4":
+    if integrator == Integrator.RK4:
         # global error of order t * omega * (omega dt)^4 / 120 * amp
         assert errors[1] < t_end * omega * (omega * dts[1]) ** 4 / 120 * amp
         assert errors[0] / errors[1] == pytest.approx(16.0, rel=0.15)
@@ -164,7 +169,7 @@ def test_imex_dampers_only_remove_kinetic_energy_and_keep_momentum() -> None:
         params = np.column_stack([np.zeros(len(springs)), np.zeros(len(springs)),  # no elastic force
                                   rng.uniform(1.0, 500.0, len(springs))])
         dt = 10.0 ** rng.uniform(-4, -1)
-        work, coef = workspace(len(x), len(springs))
+        work, coef = Scratch.sized(len(x), len(springs))
         kinetic = 0.5 * np.sum(v * v / inv_mass[:, None])
         momentum = np.sum(v / inv_mass[:, None], axis=0)
         step_imex_euler(x, v, inv_mass, 0.0, 0.0, springs, params, dt, work, coef)
@@ -180,7 +185,7 @@ def test_imex_damper_of_one_spring_is_two_backward_euler_half_steps() -> None:
     inv_mass, kd, dt = np.array([2.0, 0.5]), 40.0, 0.01
     axis = x[1] - x[0]
     before = np.dot(v[1] - v[0], axis)
-    work, coef = workspace(2, 1)
+    work, coef = Scratch.sized(2, 1)
     step_imex_euler(x, v, inv_mass, 0.0, 0.0, np.array([[0, 1]]), np.array([[1.0, 0.0, kd]]), dt, work, coef)
     assert np.dot(v[1] - v[0], axis) == pytest.approx(before / (1.0 + 0.5 * dt * kd * inv_mass.sum()) ** 2, rel=1e-12)
 

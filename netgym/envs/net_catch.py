@@ -11,7 +11,7 @@ import numpy as np
 from gymnasium import spaces
 
 from netgym.config import SceneConfig, load_scene
-from netgym.launch import Thrower, action_to_velocity, opening_centre, opening_miss_distance, sample_thrower
+from netgym.launch import Thrower, action_to_velocity, opening_miss_distance, sample_thrower
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
 
@@ -113,7 +113,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self.reward_mode = reward_mode
         self.render_mode = render_mode
         self.fast = fast
-        self._centre = opening_centre(self.sim.model.geometry.opening)
+        self._centre = self.sim.opening.centre
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
         self.observation_space = self._observation_space()
@@ -150,7 +150,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self.sim.reset()
         self._throws_done = 0
         self._caught = 0
-        self.thrower = sample_thrower(self.scene.throw, self.sim.model.geometry.opening, self.np_random)
+        self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
         self._frames = []
         if self.render_mode in ("human", "rgb_array_list"):
             self._record_frame(self.sim)
@@ -184,12 +184,12 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._caught += int(result.captured)
         reward = 1.0 if result.captured else 0.0
         if self.reward_mode == "shaped" and not result.captured:
-            miss = opening_miss_distance(launch, velocity, self.sim.model.geometry.opening,
+            miss = opening_miss_distance(launch, velocity, self.sim.opening,
                                          self.sim.model.gravity, self.sim.model.ball_radius)
             reward = SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
         terminated = self._throws_done >= self.balls_per_episode
         if not terminated:
-            self.thrower = sample_thrower(self.scene.throw, self.sim.model.geometry.opening, self.np_random)
+            self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
         info = {"captured": result.captured, "reason": result.reason,
                 "final_position": result.final_position, "sim_time": result.time,
                 "substeps": result.substeps, "launch_position": launch, "launch_velocity": velocity}

@@ -14,7 +14,8 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from netgym.envs.net_catch import NetCatchEnv
-from netgym.physics.batch import BatchRunner
+from netgym.physics.integration import Workspace
+from netgym.physics.plans import drive
 
 
 class NetCatchVectorEnv(VectorEnv):
@@ -41,7 +42,7 @@ class NetCatchVectorEnv(VectorEnv):
         self.single_action_space = self.envs[0].action_space
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
-        self._runner = BatchRunner()
+        self._workspace = Workspace()
 
     def reset(self, *, seed: int | list[int | None] | None = None,
               options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict[str, Any]]:
@@ -72,7 +73,7 @@ class NetCatchVectorEnv(VectorEnv):
             launches.append(launch)
             velocities.append(velocity)
             plans.append(env.sim.throw_plan(launch, velocity, fast=env.fast))
-        results = self._runner.run([env.sim for env in self.envs], plans)
+        results = drive([env.sim for env in self.envs], plans, self._workspace)
         observations, rewards = [], np.zeros(self.num_envs)
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)

@@ -22,7 +22,7 @@ import math
 
 from numba import njit
 
-from netgym.physics.model import BALL_BALL, BALL_GROUND, BALL_NET, BALL_POLE, NET_GROUND
+from netgym.physics.kinds import Contact
 from netgym.physics.rows import add_scaled
 
 
@@ -110,12 +110,12 @@ def _ball_poles(x, v, b, radius, poles, coef, threshold):
             continue
         dist = math.sqrt(dist2)
         _static_response(x, v, b, dx / dist, dy / dist, dz / dist, reach - dist,
-                         coef[BALL_POLE, 0], coef[BALL_POLE, 1], threshold)
+                         coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold)
 
 
 @njit(cache=True)
 def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
-    e, mu = coef[BALL_NET, 0], coef[BALL_NET, 1]
+    e, mu = coef[Contact.BALL_NET, 0], coef[Contact.BALL_NET, 1]
     r2 = radius * radius
     for k in range(n_net):
         dx = x[k, 0] - x[b, 0]
@@ -184,11 +184,11 @@ def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, thres
                 continue
             dist = math.sqrt(dist2)
             _pair_response(x, v, inv_mass, b, c, c, 0.0, dx / dist, dy / dist, dz / dist, reach - dist,
-                           coef[BALL_BALL, 0], coef[BALL_BALL, 1], threshold)
+                           coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
         if x[k, 2] < floor and inv_mass[k] > 0.0:
-            pair = BALL_GROUND if k >= n_net else NET_GROUND
+            pair = Contact.BALL_GROUND if k >= n_net else Contact.NET_GROUND
             _static_response(x, v, k, 0.0, 0.0, 1.0, floor - x[k, 2], coef[pair, 0], coef[pair, 1], threshold)
 
 

@@ -1,7 +1,6 @@
 """Time integrators for the smooth forces (springs, dampers, gravity); contacts come after.
 
-Four methods, one numba kernel each, selected by code (the index in
-:data:`netgym.config.INTEGRATORS`):
+Five methods, one numba kernel each, selected by :class:`~netgym.physics.kinds.Integrator` code:
 
 ====================  =====  ===============================================================
 integrator            order  notes
@@ -17,10 +16,12 @@ imex_euler            1      symplectic Euler on elastic forces and gravity, dam
 ====================  =====  ===============================================================
 
 Every kernel takes a ``work`` array of shape (WORK_SLOTS, n, 3) and a ``coef`` array of
-shape (n_springs, 5) as scratch space, so a step allocates nothing.
+shape (n_springs, 5) as scratch space (together a :class:`Scratch`), so a step allocates nothing.
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -28,13 +29,19 @@ from numba import njit
 from netgym.physics.forces import accelerations, spring_axis, spring_forces
 from netgym.physics.rows import add_pair_force, add_scaled
 
-EXPLICIT_EULER, SYMPLECTIC_EULER, RK4, IMPLICIT_EULER, IMEX_EULER = range(5)
 WORK_SLOTS = 7
 
 
-def workspace(n_bodies: int, n_springs: int) -> tuple[np.ndarray, np.ndarray]:
-    """Scratch arrays (work, coef) for bodies and springs of this size."""
-    return np.zeros((WORK_SLOTS, n_bodies, 3)), np.zeros((max(n_springs, 1), 5))
+class Scratch(NamedTuple):
+    """Scratch space of the integrators: ``work`` (WORK_SLOTS, n_bodies, 3), ``coef`` (n_springs, 5)."""
+
+    work: np.ndarray
+    coef: np.ndarray
+
+    @classmethod
+    def sized(cls, n_bodies: int, n_springs: int) -> "Scratch":
+        """Zeroed scratch for bodies and springs of this size."""
+        return cls(np.zeros((WORK_SLOTS, n_bodies, 3)), np.zeros((max(n_springs, 1), 5)))
 
 
 @njit(cache=True)

@@ -6,16 +6,50 @@ the rows after them are balls, in launch order. Kernels work on these flat float
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from netgym.config import INTEGRATORS, SceneConfig
-from netgym.physics.net import SPRING_KINDS, STRUCTURAL, NetGeometry, build_net
+from netgym.config import SceneConfig, SimulationConfig
+from netgym.physics.kinds import Contact, Integrator, SpringKind
+from netgym.physics.net import NetGeometry, build_net
+from netgym.physics.opening import Opening
 
-# rows of Model.contact: (restitution, friction) per kind of contact
-BALL_NET, BALL_POLE, BALL_BALL, BALL_GROUND, NET_GROUND = range(5)
-_CONTACT_PAIRS = ("ball_net", "ball_pole", "ball_ball", "ball_ground", "net_ground")
+
+class KernelModel(NamedTuple):
+    """The static arrays and constants of a scene in the form the numba kernels take (one
+    typed record instead of a dozen arguments). Built once per :class:`Model`."""
+
+    n_net: int
+    springs: np.ndarray
+    spring_params: np.ndarray
+    segments: np.ndarray
+    poles: np.ndarray
+    contact: np.ndarray
+    restitution_threshold: float
+    gravity: float
+    drag: float
+    ball_radius: float
+    opening: np.ndarray
+
+
+class Settings(NamedTuple):
+    """How to integrate: the method and step, and the safeguards (see :class:`SimulationConfig`)."""
+
+    integrator: int
+    dt: float
+    max_travel: float
+    cg_tolerance: float
+    cg_max_iterations: int
+    divergence_speed: float
+
+    @classmethod
+    def of(cls, config: SimulationConfig, integrator: int, dt: float) -> "Settings":
+        """The settings of a scene's simulation section with this integrator and ``dt``."""
+        return cls(int(integrator), float(dt), config.max_ball_travel, config.cg_tolerance,
+                   config.cg_max_iterations, config.divergence_speed)
 
 
 @dataclass(frozen=True)
@@ -25,7 +59,8 @@ class Model:
     ``springs`` holds particle index pairs, ``spring_params`` the columns (rest length, ks, kd).
     ``segments`` are the structural springs, against which balls collide (not only the
     particles: springs never sink into a ball). ``poles`` rows are capsules
-    ``(ax, ay, az, bx, by, bz, radius)``.
+    ``(ax, ay, az, bx, by, bz, radius)``. ``contact`` rows are (restitution, friction) per
+    :class:`Contact` kind. ``kernel`` is the same in the form the kernels take.
     """
 
     config: SceneConfig
@@ -43,20 +78,20 @@ class Model:
     drag: float
     ball_radius: float
     ball_mass: float
-    opening: np.ndarray
-    integrator_code: int
+    opening: Opening
+    integrator: Integrator
 
     @classmethod
     def from_config(cls, config: SceneConfig) -> "Model":
         """Build the model of a scene."""
         geo = build_net(config.net)
         rest = np.linalg.norm(geo.positions[geo.springs[:, 0]] - geo.positions[geo.springs[:, 1]], axis=1)
-        per_kind = np.array([[getattr(config.springs, k).ks, getattr(config.springs, k).kd] for k in SPRING_KINDS])
+        per_kind = np.array([[getattr(config.springs, k).ks, getattr(config.springs, k).kd] for k in SpringKind.labels()])
         params = np.column_stack([rest, per_kind[geo.spring_kind]])
         inv_mass = np.where(geo.fixed, 0.0, 1.0 / config.net.particle_mass)
         poles = np.column_stack([geo.poles, np.full(len(geo.poles), config.net.pole_radius)])
         contact = np.array([[getattr(config.contact, p).restitution, getattr(config.contact, p).friction]
-                            for p in _CONTACT_PAIRS])
+                            for p in Contact.labels()])
         return cls(
             config=config,
             geometry=geo,
@@ -65,7 +100,7 @@ class Model:
             springs=np.ascontiguousarray(geo.springs),
             spring_params=np.ascontiguousarray(params),
             spring_kind=geo.spring_kind,
-            segments=np.ascontiguousarray(geo.springs[geo.spring_kind == STRUCTURAL]),
+            segments=np.ascontiguousarray(geo.springs[geo.spring_kind == SpringKind.STRUCTURAL]),
             poles=np.ascontiguousarray(poles),
             contact=contact,
             restitution_threshold=config.contact.restitution_threshold,
@@ -73,9 +108,16 @@ class Model:
             drag=config.net.drag,
             ball_radius=config.ball.radius,
             ball_mass=config.ball.mass,
-            opening=geo.opening.as_array(),
-            integrator_code=INTEGRATORS.index(config.simulation.integrator),
+            opening=geo.opening,
+            integrator=Integrator.parse(config.simulation.integrator),
         )
+
+    @functools.cached_property
+    def kernel(self) -> KernelModel:
+        """The arrays and constants the kernels need, as one record."""
+        return KernelModel(self.n_net, self.springs, self.spring_params, self.segments, self.poles, self.contact,
+                           self.restitution_threshold, self.gravity, self.drag, self.ball_radius,
+                           self.opening.kernel_array())
 
     @property
     def n_springs(self) -> int:

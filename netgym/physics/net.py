@@ -13,35 +13,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.config import NetConfig
+from netgym.physics.kinds import SpringKind
+from netgym.physics.opening import Opening
 
-STRUCTURAL, SHEAR, BENDING = 0, 1, 2
-SPRING_KINDS = ("structural", "shear", "bending")
 _OFFSETS = {
-    STRUCTURAL: ((1, 0), (0, 1)),
-    SHEAR: ((1, 1), (1, -1)),
-    BENDING: ((2, 0), (0, 2)),
+    SpringKind.STRUCTURAL: ((1, 0), (0, 1)),
+    SpringKind.SHEAR: ((1, 1), (1, -1)),
+    SpringKind.BENDING: ((2, 0), (0, 2)),
 }
-
-
-@dataclass(frozen=True)
-class Opening:
-    """The open face: points with ``sign * (p[axis] - plane) > 0`` are outside the box.
-
-    ``tangent_axes`` are the two other axes and ``tangent_lower``/``tangent_upper`` bound the
-    opening rectangle on them.
-    """
-
-    axis: int
-    sign: int
-    plane: float
-    tangent_axes: tuple[int, int]
-    tangent_lower: tuple[float, float]
-    tangent_upper: tuple[float, float]
-
-    def as_array(self) -> np.ndarray:
-        """Packed form for kernels: axis, sign, plane, u, w, u_lo, u_hi, w_lo, w_hi."""
-        (u, w), (ulo, wlo), (uhi, whi) = self.tangent_axes, self.tangent_lower, self.tangent_upper
-        return np.array([self.axis, self.sign, self.plane, u, w, ulo, uhi, wlo, whi], dtype=np.float64)
 
 
 @dataclass(frozen=True)
@@ -52,7 +31,7 @@ class NetGeometry:
     lattice: np.ndarray            # (n, 3) integer lattice coordinates
     fixed: np.ndarray              # (n,) bool
     springs: np.ndarray            # (s, 2) particle indices, i < j
-    spring_kind: np.ndarray        # (s,) STRUCTURAL / SHEAR / BENDING
+    spring_kind: np.ndarray        # (s,) SpringKind codes
     poles: np.ndarray              # (p, 6) capsule axis end points a, b
     opening: Opening
 

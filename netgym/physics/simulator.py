@@ -1,6 +1,7 @@
 """The public simulator: a scene's net and balls, stepping, relaxation and plans.
 
-Whole throws (the fast path and its decisions) come from :class:`~netgym.physics.throws.ThrowPlanning`.
+Whole throws (the fast path and its decisions) are :class:`~netgym.physics.throws.Throw` plans,
+which use only this class's public API; :func:`~netgym.physics.plans.drive` carries out plans.
 """
 
 from __future__ import annotations
@@ -13,14 +14,17 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from netgym.config import INTEGRATORS, SceneConfig, load_scene
+from netgym.config import SceneConfig, load_scene
 from netgym.errors import SimulationDivergedError, UnstableTimeStepError
-from netgym.physics import stepping
 from netgym.physics.forces import energies
-from netgym.physics.integrators import IMPLICIT_EULER, workspace
-from netgym.physics.model import Model, State
+from netgym.physics.integration import Workspace
+from netgym.physics.kinds import Integrator
+from netgym.physics.model import KernelModel, Model, Settings, State
+from netgym.physics.opening import Opening
+from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, drive
 from netgym.physics.stability import NetModes, net_modes, stable_dt
-from netgym.physics.throws import CHUNK_SECONDS, Plan, ThrowPlanning, vector_argument
+from netgym.physics.stepping import new_counters
+from netgym.physics.throws import Throw, ThrowResult, vector_argument
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
@@ -46,7 +50,7 @@ _SETTLED: dict[SceneConfig, np.ndarray] = {}
 _MODES: dict[tuple[Any, Any], NetModes] = {}
 
 
-class Simulator(ThrowPlanning):
+class Simulator:
     """Mass-spring net, poles and balls of one scene.
 
     :param scene: a :class:`SceneConfig`, a built-in scene name or a TOML path.
@@ -54,6 +58,9 @@ class Simulator(ThrowPlanning):
     :param check_stability: refuse an explicit integrator whose ``dt`` is beyond the linear
         stability limit estimated for this net, linearised about its built shape (raises
         :class:`UnstableTimeStepError`).
+
+    ``awake`` is False while the net and the balls in it are at rest (a throw then need not
+    integrate them while its ball flies far from them); any integration wakes the scene.
     """
 
     def __init__(self, scene: SceneConfig | str | Path = "basket",
@@ -64,23 +71,45 @@ class Simulator(ThrowPlanning):
         self.config = config
         self.model = Model.from_config(config)
         self.state = State.at_rest(self.model)
-        self.stats = np.zeros(2)  # counters: integration substeps, CG iterations
-        self._work, self._coef = workspace(self.model.n_net, self.model.n_springs)
-        self._awake = False
-        sim = config.simulation
-        self._dt, self._integrator = sim.dt, self.model.integrator_code
+        self.counters = new_counters()
+        self.workspace = Workspace()
+        self.awake = False
         self.modes = self._net_modes()
-        self.stable_dt = stable_dt(self._integrator, self.modes)
-        if check_stability and sim.dt > self.stable_dt:
+        self.stable_dt = stable_dt(self.integrator, self.modes)
+        if check_stability and self.dt > self.stable_dt:
             raise UnstableTimeStepError(
-                f"simulation.dt = {sim.dt:g} s is beyond the linear stability limit "
-                f"{self.stable_dt:.3g} s of {sim.integrator} on this net (highest frequency "
+                f"simulation.dt = {self.dt:g} s is beyond the linear stability limit "
+                f"{self.stable_dt:.3g} s of {self.integrator.label} on this net (highest frequency "
                 f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
                 f"dt <= {self.stable_dt:.3g} s, or integrator = \"imex_euler\" or \"implicit_euler\"")
         self.state = State.at_rest(self.model, self._settled_positions())
         self._rest_state = self.state.copy()
 
-    # ------------------------------------------------------------------ state access
+    # ------------------------------------------------------------------ scene and state access
+    @property
+    def dt(self) -> float:
+        """The scene's integration step (s)."""
+        return self.config.simulation.dt
+
+    @property
+    def integrator(self) -> Integrator:
+        """The scene's integrator."""
+        return self.model.integrator
+
+    @property
+    def opening(self) -> Opening:
+        """The net's opening."""
+        return self.model.opening
+
+    @property
+    def kernel_model(self) -> KernelModel:
+        """The scene in the form the kernels take."""
+        return self.model.kernel
+
+    def settings(self, integrator: int, dt: float) -> Settings:
+        """Kernel settings for ``integrator`` and ``dt`` with this scene's safeguards."""
+        return Settings.of(self.config.simulation, integrator, dt)
+
     @property
     def n_balls(self) -> int:
         """Number of balls in the scene."""
@@ -99,12 +128,12 @@ class Simulator(ThrowPlanning):
     @property
     def substeps(self) -> int:
         """Integration substeps taken since construction."""
-        return int(self.stats[stepping.SUBSTEPS])
+        return int(self.counters[0]["substeps"])
 
     @property
     def cg_iterations(self) -> int:
         """Conjugate-gradient iterations taken by implicit Euler since construction."""
-        return int(self.stats[stepping.CG_ITERATIONS])
+        return int(self.counters[0]["cg_iterations"])
 
     def energy(self) -> Energy:
         """Energy of the current state."""
@@ -116,7 +145,7 @@ class Simulator(ThrowPlanning):
     def reset(self) -> None:
         """Back to the net at rest, without balls, at time 0."""
         self.state.restore(self._rest_state)
-        self._awake = False
+        self.awake = False
 
     def launch_ball(self, position: Any, velocity: Any) -> int:
         """Add a ball at ``position`` (m) with ``velocity`` (m/s); returns its ball index.
@@ -135,7 +164,7 @@ class Simulator(ThrowPlanning):
         s.x = np.vstack([s.x, p])
         s.v = np.vstack([s.v, v])
         s.inv_mass = np.append(s.inv_mass, 1.0 / self.model.ball_mass)
-        s.entered = np.append(s.entered, np.int8(self._inside_box(p)))
+        s.entered = np.append(s.entered, np.int8(self.opening.contains(p)))
         return self.n_balls - 1
 
     def remove_ball(self, index: int) -> None:
@@ -145,15 +174,24 @@ class Simulator(ThrowPlanning):
         s, row = self.state, self.model.n_net + index
         s.x, s.v = np.delete(s.x, row, axis=0), np.delete(s.v, row, axis=0)
         s.inv_mass, s.entered = np.delete(s.inv_mass, row), np.delete(s.entered, index)
-        self._awake = True
+        self.awake = True
+
+    def sleep(self, keep: int | None = None) -> None:
+        """Put the scene to rest: zero every velocity but that of body row ``keep`` (a ball in
+        flight), and mark the scene asleep, so that a throw need not integrate it."""
+        kept = None if keep is None else self.state.v[keep].copy()
+        self.state.v[:] = 0.0
+        if keep is not None:
+            self.state.v[keep] = kept
+        self.awake = False
 
     # ------------------------------------------------------------------ stepping
     def step(self, n_steps: int = 1, integrator: str | None = None, dt: float | None = None) -> None:
         """Integrate everything for ``n_steps`` steps (no shortcuts), with the scene's
         integrator and ``dt`` unless others are given (for convergence and stability studies)."""
-        code = self._integrator if integrator is None else INTEGRATORS.index(integrator)
-        self._advance(n_steps, code, self._dt if dt is None else dt)
-        self._awake = True
+        code = self.integrator if integrator is None else Integrator.parse(integrator)
+        self.run(_request(Integrate(n_steps, code, self.dt if dt is None else dt)))
+        self.awake = True
 
     def relax(self, max_time: float = 60.0) -> None:
         """Bring the net and the balls in it to their equilibrium: the pause between two throws.
@@ -168,14 +206,14 @@ class Simulator(ThrowPlanning):
 
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None) -> Plan:
         """:meth:`relax` as a plan (see :meth:`run`)."""
-        integrator = self._integrator if integrator is None else integrator
-        dt = self._dt if dt is None else dt
+        integrator = self.integrator if integrator is None else integrator
+        dt = self.dt if dt is None else dt
         steps = max(1, round(CHUNK_SECONDS / dt))
         previous = math.inf
         started = self.state.time
         window_start, window_time = self.state.x.copy(), self.state.time
         while self.state.time - started < max_time:
-            yield steps, integrator, dt
+            yield Integrate(steps, integrator, dt)
             kinetic = self.energy().kinetic
             if kinetic < previous:
                 self.state.v[:] = 0.0
@@ -183,66 +221,38 @@ class Simulator(ThrowPlanning):
             previous = kinetic
             if self.state.time - window_time >= RELAX_WINDOW - 1e-12:
                 if float(np.abs(self.state.x - window_start).max(initial=0.0)) < RELAX_DISPLACEMENT:
-                    self.state.v[:] = 0.0
-                    self._awake = False
+                    self.sleep()
                     return
                 window_start, window_time = self.state.x.copy(), self.state.time
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
-    def run(self, plan: Plan, observer: Callable[["Simulator"], None] | None = None) -> Any:
-        """Carry out a plan on this simulator alone and return its result.
+    def throw(self, position: Any, velocity: Any, fast: bool = True,
+              observer: Callable[["Simulator"], None] | None = None, frame_dt: float | None = None) -> ThrowResult:
+        """Launch a ball and simulate until its outcome is decided (see :class:`Throw`).
 
-        A plan (from :meth:`throw_plan` or :meth:`relax_plan`) is a generator that yields
-        ``(n_steps, integrator, dt)`` requests to integrate (``n_steps == 0``: time moved in
-        closed form) and holds all the decisions; the driver only integrates, which lets a
-        vector environment integrate many simulators' requests in one parallel call.
-        ``observer(sim)`` is called after every request, for example to record frames.
+        The net is first brought to rest if it still moves. A captured ball stays in the scene;
+        a missed one is removed. With ``fast=False`` everything is integrated from launch to the
+        time limit (the reference the fast path is tested against). ``observer(sim)`` is called
+        at least every ``frame_dt`` simulated seconds (for recording frames).
         """
-        try:
-            request = next(plan)
-            while True:
-                n_steps, integrator, dt = request
-                try:
-                    if n_steps:
-                        self._advance(n_steps, integrator, dt)
-                except SimulationDivergedError as error:
-                    request = plan.throw(error)
-                    continue
-                if observer is not None:
-                    observer(self)
-                request = next(plan)
-        except StopIteration as stop:
-            return stop.value
+        return self.run(self.throw_plan(position, velocity, fast, frame_dt), observer)
 
-    def _advance(self, n_steps: int, integrator: int, dt: float) -> None:
-        m, s = self.model, self.state
-        sim = self.config.simulation
-        before = self.begin_advance()
-        status = stepping.advance(
-            s.x, s.v, s.inv_mass, s.entered, m.n_net, m.springs, m.spring_params, m.segments,
-            m.poles, m.contact, m.restitution_threshold, m.gravity, m.drag, m.ball_radius, m.opening,
-            integrator, dt, n_steps, sim.max_ball_travel, sim.cg_tolerance, sim.cg_max_iterations,
-            sim.divergence_speed, self._work, self._coef, self.stats)
-        self.end_advance(status, before, n_steps, integrator, dt)
+    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frame_dt: float | None = None) -> Plan:
+        """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
+        return Throw(self, position, velocity, fast, frame_dt).plan()
 
-    def begin_advance(self) -> State:
-        """Prepare scratch space for the current state; returns a copy to restore on failure."""
-        if self._work.shape[1] != self.state.x.shape[0]:
-            self._work, self._coef = workspace(self.state.x.shape[0], self.model.n_springs)
-        return self.state.copy()
+    def run(self, plan: Plan, observer: Callable[["Simulator"], None] | None = None) -> Any:
+        """Carry out a plan on this simulator alone (with :func:`~netgym.physics.plans.drive`)
+        and return its result. ``observer(sim)`` is called after every request."""
+        return drive([self], [plan], self.workspace, observer)[0]
 
-    def end_advance(self, status: int, before: State, n_steps: int, integrator: int, dt: float) -> None:
-        """Book the time of an integration, or restore ``before`` and raise if it diverged."""
-        s = self.state
-        if status != stepping.OK:
-            s.restore(before)
-            raise SimulationDivergedError(
-                f"{INTEGRATORS[integrator]} at dt = {dt:g} s diverged (a speed exceeded "
-                f"{self.config.simulation.divergence_speed:g} m/s or became non-finite) within "
-                f"{n_steps} steps from t = {before.time:g} s; the state was restored. Use a smaller "
-                f"simulation.dt (linear stability limit of {INTEGRATORS[self._integrator]} here: "
-                f"{self.stable_dt:.3g} s), or integrator = \"imex_euler\" or \"implicit_euler\"")
-        s.time += n_steps * dt
+    def divergence_advice(self, integrator: int) -> str:
+        """What to change after ``integrator`` diverged on this scene."""
+        others = " or ".join(f'"{i.label}"' for i in (Integrator.IMEX_EULER, Integrator.IMPLICIT_EULER)
+                             if i != integrator)
+        limit = stable_dt(integrator, self.modes)
+        bound = f" (linear stability limit of {Integrator(integrator).label} here: {limit:.3g} s)" if math.isfinite(limit) else ""
+        return f"Use a smaller simulation.dt{bound}, or integrator = {others}"
 
     def _net_modes(self) -> NetModes:
         """Fastest mode of the net linearised about its built shape (cached per net and springs)."""
@@ -262,14 +272,11 @@ class Simulator(ThrowPlanning):
                 # an unstable dt (allowed with check_stability=False) cannot hold the net still:
                 # start it from the equilibrium found with implicit Euler instead
                 self.state = State.at_rest(self.model)
-                self.run(self.relax_plan(60.0, IMPLICIT_EULER, RELAX_IMPLICIT_DT))
+                self.run(self.relax_plan(60.0, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT))
             _SETTLED[key] = self.state.x.copy()
         return _SETTLED[key]
 
-    # ------------------------------------------------------------------ geometry helpers
-    def _inside_box(self, p: np.ndarray) -> bool:
-        o = self.model.geometry.opening
-        u, w = o.tangent_axes
-        inner = o.sign * (p[o.axis] - o.plane) < 0.0
-        return bool(inner and o.tangent_lower[0] <= p[u] <= o.tangent_upper[0]
-                    and o.tangent_lower[1] <= p[w] <= o.tangent_upper[1])
+
+def _request(request: Integrate) -> Plan:
+    """A plan of a single request."""
+    yield request

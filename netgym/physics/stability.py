@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from netgym.physics.integrators import EXPLICIT_EULER, IMEX_EULER, IMPLICIT_EULER, RK4, SYMPLECTIC_EULER
+from netgym.physics.kinds import Integrator
 
 
 @dataclass(frozen=True)
@@ -86,24 +86,24 @@ def net_modes(positions: np.ndarray, inv_mass: np.ndarray, springs: np.ndarray, 
 def _step_matrix(integrator: int, dt: float, omega2: float, damping: float) -> np.ndarray:
     """One-step matrix of ``integrator`` on (x, v) for x'' = -omega2 x - damping x'."""
     a = np.array([[0.0, 1.0], [-omega2, -damping]])
-    if integrator == EXPLICIT_EULER:
+    if integrator == Integrator.EXPLICIT_EULER:
         return np.eye(2) + dt * a
-    if integrator == RK4:
+    if integrator == Integrator.RK4:
         h = dt * a
         return np.eye(2) + h + h @ h / 2 + h @ h @ h / 6 + h @ h @ h @ h / 24
-    if integrator == SYMPLECTIC_EULER:
+    if integrator == Integrator.SYMPLECTIC_EULER:
         v_row = np.array([-dt * omega2, 1.0 - dt * damping])
         return np.array([[1.0 + dt * v_row[0], dt * v_row[1]], v_row])
-    if integrator == IMEX_EULER:
+    if integrator == Integrator.IMEX_EULER:
         # its dampers (a symmetric sweep of per-spring backward Euler solves) only remove energy;
         # the estimate is the elastic limit alone, that of undamped symplectic Euler
-        return _step_matrix(SYMPLECTIC_EULER, dt, omega2, 0.0)
+        return _step_matrix(Integrator.SYMPLECTIC_EULER, dt, omega2, 0.0)
     raise ValueError(f"integrator code {integrator} has no explicit step matrix")
 
 
 def stable_dt(integrator: int, modes: NetModes) -> float:
     """Largest dt at which ``integrator`` is linearly stable on ``modes`` (inf for implicit Euler)."""
-    if integrator == IMPLICIT_EULER:
+    if integrator == Integrator.IMPLICIT_EULER:
         return float("inf")
 
     def stable(dt: float) -> bool:

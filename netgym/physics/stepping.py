@@ -8,20 +8,17 @@ import numpy as np
 from numba import njit, prange
 
 from netgym.physics.contacts import resolve_contacts
-from netgym.physics.integrators import (
-    EXPLICIT_EULER,
-    IMEX_EULER,
-    RK4,
-    SYMPLECTIC_EULER,
-    step_euler,
-    step_imex_euler,
-    step_implicit_euler,
-    step_rk4,
-)
+from netgym.physics.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler, step_rk4
+from netgym.physics.kinds import Integrator
 
 OK, DIVERGED = 0, 1
-# slots of the ``stats`` array that :func:`advance` accumulates into
-SUBSTEPS, CG_ITERATIONS = 0, 1
+COUNTERS = np.dtype([("substeps", np.int64), ("cg_iterations", np.int64)])
+"""The work counters :func:`advance` adds to: a one-record array of this type."""
+
+
+def new_counters() -> np.ndarray:
+    """A zeroed one-record array of :data:`COUNTERS`."""
+    return np.zeros(1, dtype=COUNTERS)
 
 
 @njit(cache=True)
@@ -98,67 +95,76 @@ def update_entered(x, before, n_net, entered, opening):
 
 
 @njit(cache=True)
-def advance(x, v, inv_mass, entered, n_net, springs, params, segments, poles, contact, threshold,
-            gravity, drag, radius, opening, integrator, dt, n_steps, max_travel, cg_tolerance,
-            cg_max_iterations, divergence_speed, work, coef, stats):
-    """Advance the state by ``n_steps`` steps of ``dt``, in place.
+def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
+    """Advance the state by ``n_steps`` steps of ``settings.dt``, in place; the only kernel that
+    unpacks a :class:`~netgym.physics.model.KernelModel` and its
+    :class:`~netgym.physics.model.Settings` for the passes of a step.
 
     Balls move on their exact free-flight parabola between contacts (net particles feel air
     drag; balls do not). A step is split into equal substeps when a ball could otherwise move
-    more than ``max_travel * radius`` relative to the net particles near it in one. After each
-    substep contacts are resolved and the balls' ``entered`` flags updated. Returns OK, or DIVERGED as soon as a
-    velocity is non-finite or above ``divergence_speed`` (the state is then invalid and the
-    caller restores its copy).
+    more than ``max_travel * radius`` relative to the net particles near it in one. Each substep:
+
+    1. the smooth forces (springs, dampers, gravity, drag) with the chosen integrator;
+    2. the balls' exact parabola over the substep;
+    3. contacts, in one deterministic pass;
+    4. the balls' ``entered`` flags (crossings of the opening).
+
+    ``scratch`` is an :class:`~netgym.physics.integrators.Scratch` for this many bodies;
+    ``stats`` a :data:`COUNTERS` record array. Returns OK, or DIVERGED as soon as a velocity is
+    non-finite or above ``divergence_speed`` (the state is then invalid and the caller restores
+    its copy).
     """
+    n_net, radius, gravity, drag = model.n_net, model.ball_radius, model.gravity, model.drag
+    springs, params = model.springs, model.spring_params
+    integrator, dt = settings.integrator, settings.dt
+    work, coef = scratch.work, scratch.coef
     n_balls = x.shape[0] - n_net
     before = np.empty((n_balls, 3))
     before_v = np.empty((n_balls, 3))
     box = np.empty(6)
     for _ in range(n_steps):
-        if not _finite_and_below(v, divergence_speed):
+        if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
         substeps = 1
         if n_balls > 0:
             closing = _closing_speed(x, v, n_net, radius, dt)
-            substeps = max(1, int(math.ceil(closing * dt / (max_travel * radius))))
+            substeps = max(1, int(math.ceil(closing * dt / (settings.max_travel * radius))))
         h = dt / substeps
         for _sub in range(substeps):
             for b in range(n_balls):
                 for c in range(3):
                     before[b, c] = x[n_net + b, c]
                     before_v[b, c] = v[n_net + b, c]
-            if integrator == EXPLICIT_EULER or integrator == SYMPLECTIC_EULER:
+            if integrator == Integrator.EXPLICIT_EULER or integrator == Integrator.SYMPLECTIC_EULER:
                 step_euler(x, v, inv_mass, gravity, drag, springs, params, h, work,
-                           integrator == SYMPLECTIC_EULER)
-            elif integrator == RK4:
+                           integrator == Integrator.SYMPLECTIC_EULER)
+            elif integrator == Integrator.RK4:
                 step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
-            elif integrator == IMEX_EULER:
+            elif integrator == Integrator.IMEX_EULER:
                 step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, h, work, coef)
             else:
-                stats[CG_ITERATIONS] += step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, h,
-                                                            cg_tolerance, cg_max_iterations, work, coef)
+                stats[0].cg_iterations += step_implicit_euler(
+                    x, v, inv_mass, gravity, drag, springs, params, h, settings.cg_tolerance,
+                    settings.cg_max_iterations, work, coef)
             if n_balls > 0:
                 _exact_ball_flight(x, v, before, before_v, n_net, gravity, h)
                 _net_box(x, n_net, box)
-            resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, contact, threshold, box)
-            update_entered(x, before, n_net, entered, opening)
-            stats[SUBSTEPS] += 1
-    return OK if _finite_and_below(v, divergence_speed) else DIVERGED
+            resolve_contacts(x, v, inv_mass, n_net, radius, model.segments, model.poles, model.contact,
+                             model.restitution_threshold, box)
+            update_entered(x, before, n_net, entered, model.opening)
+            stats[0].substeps += 1
+    return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
 @njit(cache=True, parallel=True)
-def advance_batch(x, v, inv_mass, entered, n_bodies, n_steps, n_net, springs, params, segments, poles,
-                  contact, threshold, gravity, drag, radius, opening, integrator, dt, max_travel,
-                  cg_tolerance, cg_max_iterations, divergence_speed, work, coef, stats, status):
-    """:func:`advance` for many simulators of one scene at once, in parallel (``prange``).
+def advance_batch(x, v, inv_mass, entered, n_bodies, n_steps, model, settings, work, coef, stats, status):
+    """:func:`advance` for many states of one scene at once, in parallel (``prange``).
 
-    Simulator ``e`` owns rows ``:n_bodies[e]`` of ``x[e]``, ``v[e]``, ``inv_mass[e]`` (padded
+    State ``e`` owns rows ``:n_bodies[e]`` of ``x[e]``, ``v[e]``, ``inv_mass[e]`` (padded
     arrays) and integrates ``n_steps[e]`` steps (none when 0); its result goes to ``status[e]``.
     """
     for e in prange(x.shape[0]):
         if n_steps[e] > 0:
             n = n_bodies[e]
-            status[e] = advance(x[e, :n], v[e, :n], inv_mass[e, :n], entered[e, :n - n_net], n_net, springs,
-                                params, segments, poles, contact, threshold, gravity, drag, radius, opening,
-                                integrator, dt, n_steps[e], max_travel, cg_tolerance, cg_max_iterations,
-                                divergence_speed, work[e, :, :n], coef[e], stats[e])
+            status[e] = advance(x[e, :n], v[e, :n], inv_mass[e, :n], entered[e, :n - model.n_net], model,
+                                settings, n_steps[e], Scratch(work[e, :, :n], coef[e]), stats[e:e + 1])

@@ -11,7 +11,6 @@ integrates everything from launch to the time limit instead, as a reference.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -19,16 +18,13 @@ import numpy as np
 
 from netgym.errors import SimulationDivergedError
 from netgym.physics import contacts, flight, stepping
-from netgym.physics.model import BALL_GROUND
+from netgym.physics.kinds import Contact
+from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick
 from netgym.physics.surroundings import survey
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator
 
-Plan = Generator[tuple[int, int, float], None, Any]
-"""A simulation plan: yields (n_steps, integrator code, dt) requests, returns its result."""
-
-CHUNK_SECONDS = 0.01          # simulated time between two checks of a throw's outcome
 REST_WINDOW = 0.1             # s during which a ball and its surroundings must stay slow to be "at rest"
 REST_REACH = 0.2              # m around a ball within which moving bodies keep it from being at rest
 CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
@@ -58,146 +54,142 @@ class ThrowResult:
     reason: str
 
 
-class ThrowPlanning:
-    """Throw logic of :class:`~netgym.physics.simulator.Simulator` (a mixin: it uses the
-    simulator's state, model, relaxation and plan driver)."""
+class Throw:
+    """One throw into a simulator's scene, as a plan: launch a ball and simulate until its
+    outcome is decided. Uses only the simulator's public API.
 
-    def _opening_lowest_z(self) -> float:
-        o = self.model.geometry.opening
-        if o.axis == 2:
-            return o.plane
-        return o.tangent_lower[o.tangent_axes.index(2)]
+    :param sim: the :class:`~netgym.physics.simulator.Simulator` to throw into.
+    :param position: release point (m).
+    :param velocity: launch velocity (m/s).
+    :param fast: take the fast path; False integrates everything to the time limit (the reference).
+    :param frame_dt: when set, the plan yields at least every ``frame_dt`` simulated seconds
+        (a :class:`~netgym.physics.plans.Tick` while the ball flies in closed form).
+    """
 
-    def _ground(self) -> flight.Ground:
-        m = self.model
-        return flight.Ground(m.ball_radius, m.gravity, m.contact[BALL_GROUND, 0],
-                             m.contact[BALL_GROUND, 1], m.restitution_threshold)
+    def __init__(self, sim: "Simulator", position: Any, velocity: Any, fast: bool = True,
+                 frame_dt: float | None = None) -> None:
+        self.sim = sim
+        self.position = vector_argument(position, "position")  # fail on bad input before any work
+        self.velocity = vector_argument(velocity, "velocity")
+        self.fast = fast
+        self.frame_dt = frame_dt
+        m = sim.model
+        self.ground = flight.Ground(m.ball_radius, m.gravity, m.contact[Contact.BALL_GROUND, 0],
+                                    m.contact[Contact.BALL_GROUND, 1], m.restitution_threshold)
+
+    def plan(self) -> Plan:
+        """The throw as a plan; it returns the :class:`ThrowResult`. The net is first brought to
+        rest if it still moves. A captured ball stays in the scene; a missed one is removed."""
+        sim = self.sim
+        if sim.awake:
+            yield from sim.relax_plan()
+        start = sim.state.copy()
+        ball = sim.launch_ball(self.position, self.velocity)
+        try:
+            result = yield from self._steps(ball)
+        except SimulationDivergedError:
+            sim.state.restore(start)
+            raise
+        if not result.captured:
+            sim.remove_ball(ball)
+        return result
 
     def _clearance(self, row: int) -> float:
         """Distance the ball in ``row`` can travel before it could touch the net, a pole or
         another ball (the net held still)."""
-        m = self.model
-        return contacts.clearance(self.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
+        m = self.sim.model
+        return contacts.clearance(self.sim.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
 
     def _survey(self, row: int, margin: float) -> tuple[float, float, np.ndarray, np.ndarray]:
         """``(local, others, lo, hi)``: the largest velocity component of the ball in ``row`` and of
         the bodies that could touch it soon (within REST_REACH of its surface), which decides
         whether it has come to rest; the same over all other bodies; and the bounding box of the
         net, poles and other balls grown by the ball radius + pole radius + ``margin``."""
-        m = self.model
+        m, s = self.sim.model, self.sim.state
         box = np.empty(6)
-        local, others = survey(self.state.x, self.state.v, row, 2.0 * m.ball_radius + REST_REACH, m.poles, box)
+        local, others = survey(s.x, s.v, row, 2.0 * m.ball_radius + REST_REACH, m.poles, box)
         grow = m.ball_radius + float(m.poles[:, 6].max(initial=0.0)) + margin
         return local, others, box[:3] - grow, box[3:] + grow
 
-    def throw(self, position: Any, velocity: Any, fast: bool = True,
-              observer: Callable[["Simulator"], None] | None = None, frame_dt: float | None = None) -> ThrowResult:
-        """Launch a ball and simulate until its outcome is decided.
-
-        The net is first brought to rest if it still moves. A captured ball stays in the scene;
-        a missed one is removed. With ``fast=False`` everything is integrated from launch to the
-        time limit (the reference the fast path is tested against). ``observer(sim)`` is called
-        at least every ``frame_dt`` simulated seconds (for recording frames).
-        """
-        return self.run(self.throw_plan(position, velocity, fast, frame_dt), observer)
-
-    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frame_dt: float | None = None) -> Plan:
-        """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
-        vector_argument(position, "position")  # fail on bad input before any work
-        vector_argument(velocity, "velocity")
-        if self._awake:
-            yield from self.relax_plan()
-        start = self.state.copy()
-        ball = self.launch_ball(position, velocity)
-        try:
-            result = yield from self._throw_steps(ball, fast, frame_dt)
-        except SimulationDivergedError:
-            self.state.restore(start)
-            raise
-        if not result.captured:
-            self.remove_ball(ball)
-        return result
-
-    def _throw_steps(self, ball: int, fast: bool, frame_dt: float | None) -> Plan:
-        m, s, sim = self.model, self.state, self.config.simulation
+    def _steps(self, ball: int) -> Plan:
+        sim, fast = self.sim, self.fast
+        m, s, cfg = sim.model, sim.state, sim.config.simulation
         row = m.n_net + ball
-        t0, substeps0 = s.time, self.substeps
-        deadline = t0 + sim.time_limit
-        chunk = max(1, round(min(CHUNK_SECONDS, frame_dt or math.inf) / sim.dt))
-        ground = self._ground()
-        reference_energy = self._potential_without(row, self.energy())
+        t0, substeps0 = s.time, sim.substeps
+        deadline = t0 + cfg.time_limit
+        chunk = max(1, round(min(CHUNK_SECONDS, self.frame_dt or math.inf) / cfg.dt))
+        reference_energy = self._potential_without(row, sim.energy())
         rest_since: float | None = None
         while True:
-            if fast and not self._awake:
-                reason = yield from self._fly(row, deadline, ground, frame_dt)
+            if fast and not sim.awake:
+                reason = yield from self._fly(row, deadline)
                 if reason is not None:
                     break
-                self._awake = True
-            elif round((deadline - s.time) / sim.dt) > 0:
-                yield min(chunk, round((deadline - s.time) / sim.dt)), self._integrator, sim.dt
-            if deadline - s.time < 0.5 * sim.dt:
+                sim.awake = True
+            elif round((deadline - s.time) / cfg.dt) > 0:
+                yield Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
+            if deadline - s.time < 0.5 * cfg.dt:
                 reason = "time_limit"
                 break
             if not fast:
                 continue
             local, others, lo, hi = self._survey(row, AWAKE_MARGIN)
-            rest_since = (s.time if rest_since is None else rest_since) if local < sim.rest_speed else None
-            reason = self._decided(row, ground, reference_energy, rest_since, lo, hi)
+            rest_since = (s.time if rest_since is None else rest_since) if local < cfg.rest_speed else None
+            reason = self._decided(row, reference_energy, rest_since, lo, hi)
             if reason is not None:
                 break
             if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
-                flying = s.v[row].copy()
-                s.v[:] = 0.0
-                s.v[row] = flying
-                self._awake = False
+                sim.sleep(keep=row)
         entered = bool(s.entered[ball])
-        return ThrowResult(captured=entered and self._inside_box(s.x[row]), entered=entered,
+        return ThrowResult(captured=entered and sim.opening.contains(s.x[row]), entered=entered,
                            final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
-                           time=s.time - t0, substeps=self.substeps - substeps0, reason=reason)
+                           time=s.time - t0, substeps=sim.substeps - substeps0, reason=reason)
 
-    def _fly(self, row: int, deadline: float, ground: flight.Ground, frame_dt: float | None) -> Plan:
+    def _fly(self, row: int, deadline: float) -> Plan:
         """Move the ball in closed form while it is clear of everything. Returns a decision
         reason, or None when the ball came close enough to need simulating."""
-        s, g = self.state, abs(self.model.gravity)
+        sim = self.sim
+        s, g, n_net = sim.state, abs(sim.model.gravity), sim.model.n_net
         _, _, lo, hi = self._survey(row, CLEARANCE)
         while True:
-            if flight.entry_time(s.x[row], s.v[row], lo, hi, ground, deadline - s.time) is None:
+            if flight.entry_time(s.x[row], s.v[row], lo, hi, self.ground, deadline - s.time) is None:
                 return "flies_away"
             gap = self._clearance(row)
             if gap <= CLEARANCE:
                 return None
             speed = float(np.linalg.norm(s.v[row]))
             tau = (gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g))
-            tau = min(tau, deadline - s.time, frame_dt or math.inf)
-            before = s.x[self.model.n_net:].copy()
-            s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, ground)
-            stepping.update_entered(s.x, before, self.model.n_net, s.entered, self.model.opening)
+            tau = min(tau, deadline - s.time, self.frame_dt or math.inf)
+            before = s.x[n_net:].copy()
+            s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, self.ground)
+            stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
             s.time += tau
-            if frame_dt is not None:
-                yield 0, self._integrator, self._dt
-            if deadline - s.time < 0.5 * self.config.simulation.dt:
+            if self.frame_dt is not None:
+                yield Tick()
+            if deadline - s.time < 0.5 * sim.dt:
                 return "time_limit"
 
     def _potential_without(self, row: int, energy: Any) -> float:
         """Potential energy of everything but the ball in ``row`` (``energy``: the current one)."""
-        s = self.state
-        return energy.spring + energy.gravity + self.model.gravity / s.inv_mass[row] * s.x[row, 2]
+        s = self.sim.state
+        return energy.spring + energy.gravity + self.sim.model.gravity / s.inv_mass[row] * s.x[row, 2]
 
-    def _decided(self, row: int, ground: flight.Ground, reference_energy: float, rest_since: float | None,
+    def _decided(self, row: int, reference_energy: float, rest_since: float | None,
                  lo: np.ndarray, hi: np.ndarray) -> str | None:
         """The reason the throw's outcome is decided now, or None (``lo``, ``hi``: the region
         from :meth:`_survey` with AWAKE_MARGIN)."""
-        s, m = self.state, self.model
+        sim = self.sim
+        s, m = sim.state, sim.model
         p = s.x[row]
         outside = bool(np.any(p < lo) or np.any(p > hi))
-        if outside and flight.entry_time(p, s.v[row], lo, hi, ground, math.inf) is None:
+        if outside and flight.entry_time(p, s.v[row], lo, hi, self.ground, math.inf) is None:
             return "flies_away"
         if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
             return "at_rest"
-        energy = self.energy()  # one evaluation per check: kinetic and potential together
+        energy = sim.energy()  # one evaluation per check: kinetic and potential together
         free = energy.kinetic + max(0.0, self._potential_without(row, energy) - reference_energy)
         reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
-        if reach < self._opening_lowest_z():
+        if reach < sim.opening.lowest_z:
             return "cannot_reach_opening"
         return None
 

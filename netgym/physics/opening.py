@@ -1,0 +1,70 @@
+"""The net's opening: the open face of the box, through which a ball must come in.
+
+Every question about the opening (its centre, its lowest point, whether a point is inside the
+box, how far a point is from it, its packed form for the kernels) is answered here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Opening:
+    """An axis-aligned rectangle in the plane ``p[axis] = plane``; points with
+    ``sign * (p[axis] - plane) > 0`` are on the outer side of the box.
+
+    ``tangent_axes`` are the two other axes; ``tangent_lower``/``tangent_upper`` bound the
+    rectangle on them.
+    """
+
+    axis: int
+    sign: int
+    plane: float
+    tangent_axes: tuple[int, int]
+    tangent_lower: tuple[float, float]
+    tangent_upper: tuple[float, float]
+
+    @property
+    def centre(self) -> np.ndarray:
+        """Centre of the rectangle (a new array)."""
+        centre = np.zeros(3)
+        centre[self.axis] = self.plane
+        for axis, lo, hi in zip(self.tangent_axes, self.tangent_lower, self.tangent_upper):
+            centre[axis] = 0.5 * (lo + hi)
+        return centre
+
+    @property
+    def lowest_z(self) -> float:
+        """Height of the rectangle's lowest point."""
+        if self.axis == 2:
+            return self.plane
+        return self.tangent_lower[self.tangent_axes.index(2)]
+
+    @property
+    def from_above(self) -> bool:
+        """True for a horizontal opening (entered from above), False for a vertical mouth."""
+        return self.axis == 2
+
+    def contains(self, point: np.ndarray) -> bool:
+        """True if ``point`` is on the inner side of the opening's plane and within the
+        rectangle's extent: inside the box the opening closes."""
+        u, w = self.tangent_axes
+        inner = self.sign * (point[self.axis] - self.plane) < 0.0
+        return bool(inner and self.tangent_lower[0] <= point[u] <= self.tangent_upper[0]
+                    and self.tangent_lower[1] <= point[w] <= self.tangent_upper[1])
+
+    def distance(self, points: np.ndarray) -> np.ndarray:
+        """Distances from points (k, 3) to the rectangle."""
+        nearest = np.array(points, dtype=np.float64)
+        nearest[:, self.axis] = self.plane
+        for axis, lo, hi in zip(self.tangent_axes, self.tangent_lower, self.tangent_upper):
+            nearest[:, axis] = np.clip(points[:, axis], lo, hi)
+        return np.linalg.norm(points - nearest, axis=1)
+
+    def kernel_array(self) -> np.ndarray:
+        """Packed form for the kernels: axis, sign, plane, u, w, u_lo, u_hi, w_lo, w_hi."""
+        (u, w), (ulo, wlo), (uhi, whi) = self.tangent_axes, self.tangent_lower, self.tangent_upper
+        return np.array([self.axis, self.sign, self.plane, u, w, ulo, uhi, wlo, whi], dtype=np.float64)
