@@ -9,27 +9,33 @@ speed is in range. No learning; its capture rate is the reference ceiling for le
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
-from netgym.config import SceneConfig
+from netgym.config import SceneConfig, load_scene
+from netgym.envs import ObservationIndex
 from netgym.launch import from_range
-from netgym.physics.net import Opening
+from netgym.physics.opening import Opening
 
 
 class BallisticOracle:
     """Chooses actions of NetCatch-v0 by solving the launch parabola.
 
     :param scene: the environment's scene config (``env.unwrapped.scene``).
-    :param opening: the net's opening (``env.unwrapped.sim.model.geometry.opening``).
     :param max_elevation: steepest elevation considered for a horizontal opening (degrees).
     """
 
-    def __init__(self, scene: SceneConfig, opening: Opening, max_elevation: float = 75.0) -> None:
+    def __init__(self, scene: SceneConfig, max_elevation: float = 75.0) -> None:
         self.scene = scene
-        self.from_above = opening.axis == 2
+        self.from_above = Opening.of_net(scene.net).from_above
         self.max_elevation = max_elevation
         self.gravity = -scene.simulation.gravity
+
+    @classmethod
+    def from_scene(cls, scene: SceneConfig | str | Path = "basket", max_elevation: float = 75.0) -> "BallisticOracle":
+        """The oracle of a scene config, built-in scene name or TOML path."""
+        return cls(scene if isinstance(scene, SceneConfig) else load_scene(scene), max_elevation)
 
     def launch(self, distance: float, height: float) -> tuple[float, float]:
         """(speed m/s, elevation degrees) of the chosen parabola from a thrower at horizontal
@@ -59,9 +65,10 @@ class BallisticOracle:
                          from_range(elevation, self.scene.throw.elevation), 0.0], dtype=np.float32)
 
     def predict(self, observation: np.ndarray, state=None, episode_start=None, deterministic: bool = True):
-        """Stable-Baselines3-style ``predict`` for one observation or a batch of them
-        (observation[0] = distance, observation[1] = height relative to the opening)."""
+        """Stable-Baselines3-style ``predict`` for one observation or a batch of them (it reads
+        the thrower's distance and height relative to the opening)."""
         obs = np.asarray(observation, dtype=np.float64)
         batch = obs.reshape(-1, obs.shape[-1])
-        actions = np.stack([self.action(float(row[0]), float(row[1])) for row in batch])
+        actions = np.stack([self.action(float(row[ObservationIndex.DISTANCE]), float(row[ObservationIndex.HEIGHT]))
+                            for row in batch])
         return (actions if obs.ndim > 1 else actions[0]), state

@@ -7,8 +7,6 @@ from pathlib import Path
 from agents.evaluation import Policy
 from agents.oracle import BallisticOracle
 from agents.random_agent import RandomAgent
-from netgym.config import load_scene
-from netgym.physics.net import build_net
 
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 
@@ -16,8 +14,7 @@ PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 def load_policy(name: str | Path, scene: str = "basket") -> Policy:
     """``"oracle"``, ``"random"`` or the path of a saved Stable-Baselines3 PPO model."""
     if str(name) == "oracle":
-        config = load_scene(scene)
-        return BallisticOracle(config, build_net(config.net).opening)
+        return BallisticOracle.from_scene(scene)
     if str(name) == "random":
         return RandomAgent(0)
     from stable_baselines3 import PPO

@@ -24,7 +24,7 @@ def record(scene: str, seed: int, throws: int, policy: str) -> list[np.ndarray]:
     """Frames of ``throws`` throws by ``policy`` (``oracle`` or ``random``)."""
     env = gym.make("NetCatch-v0", scene=scene, balls_per_episode=throws, render_mode="rgb_array_list").unwrapped
     obs, _ = env.reset(seed=seed)
-    oracle = BallisticOracle(env.scene, env.sim.model.geometry.opening)
+    oracle = BallisticOracle(env.scene)
     rng = np.random.default_rng(seed)
     frames = list(env.render())
     for _ in range(throws):

@@ -70,7 +70,7 @@ def test_reset_seed_makes_episodes_deterministic() -> None:
 @pytest.mark.parametrize("scene", ["basket", "goal"])
 def test_observations_stay_inside_their_space(scene: str) -> None:
     env = gym.make("NetCatch-v0", scene=scene).unwrapped
-    oracle = BallisticOracle(env.scene, env.sim.model.geometry.opening)
+    oracle = BallisticOracle(env.scene)
     rng = np.random.default_rng(1)
     obs, _ = env.reset(seed=3)
     for k in range(12):
@@ -85,7 +85,7 @@ def test_observations_stay_inside_their_space(scene: str) -> None:
 
 def test_episode_holds_balls_per_episode_throws_and_keeps_caught_balls() -> None:
     env = gym.make("NetCatch-v0", balls_per_episode=3).unwrapped
-    oracle = BallisticOracle(env.scene, env.sim.model.geometry.opening)
+    oracle = BallisticOracle(env.scene)
     obs, _ = env.reset(seed=5)
     ends = []
     for _ in range(3):
@@ -126,7 +126,7 @@ def test_bad_arguments_get_named_errors() -> None:
 
 def test_shaped_reward_is_bounded_and_rewards_near_misses_more() -> None:
     env = gym.make("NetCatch-v0", reward_mode="shaped").unwrapped
-    oracle = BallisticOracle(env.scene, env.sim.model.geometry.opening)
+    oracle = BallisticOracle(env.scene)
     obs, _ = env.reset(seed=2)
     good = oracle.predict(obs)[0]
     _, capture_reward, _, _, info = env.step(good)

@@ -62,15 +62,14 @@ def _step_record(obs: np.ndarray, reward: float, terminated: bool, info: dict, e
             "state": _state_digest(env)}
 
 
-def _choose_actions(env: NetCatchEnv, obs: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+def _choose_actions(env: NetCatchEnv, obs: np.ndarray, rng: np.random.Generator, throw: int) -> np.ndarray:
     """Recording only: the oracle's action, with noise on the second throw and a random third,
     so that episodes load the net with caught balls and also miss."""
     from agents.oracle import BallisticOracle
 
-    throw = env._throws_done
     if throw == BALLS - 1:
         return rng.uniform(-1, 1, 3).astype(np.float32)
-    oracle = BallisticOracle(env.scene, env.sim.model.geometry.opening)
+    oracle = BallisticOracle(env.scene)
     action = oracle.predict(obs)[0]
     if throw == 1:
         action = np.clip(action + rng.normal(0.0, 0.05, 3), -1, 1).astype(np.float32)
@@ -83,7 +82,7 @@ def _run_episode(kwargs: dict, actions: list[list[float]] | None) -> tuple[list[
     rng = np.random.default_rng(11)
     used, records = [], []
     for k in range(BALLS):
-        action = _choose_actions(env, obs, rng) if actions is None else np.array(actions[k], dtype=np.float32)
+        action = _choose_actions(env, obs, rng, k) if actions is None else np.array(actions[k], dtype=np.float32)
         used.append([float(a) for a in action])
         obs, reward, terminated, _, info = env.step(action)
         record = _step_record(obs, reward, terminated, info, env)
@@ -104,7 +103,7 @@ def _run_vector(actions: list[list[list[float]]] | None) -> tuple[list, list[dic
         if actions is None:
             from agents.oracle import BallisticOracle
 
-            batch = BallisticOracle(vec.envs[0].scene, vec.envs[0].sim.model.geometry.opening).predict(obs)[0]
+            batch = BallisticOracle(vec.envs[0].scene).predict(obs)[0]
         else:
             batch = np.array(actions[k], dtype=np.float32)
         used.append(batch.tolist())

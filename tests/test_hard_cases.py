@@ -21,7 +21,7 @@ def _assert_enveloped(sim: Simulator, seconds: float, axis: int, sign: float) ->
     """While the ball is on the inner side of the opening, it never gets beyond the net along
     ``sign * axis``: the net wraps around it (a ball bounced back out of the mouth is free)."""
     n_net = sim.model.n_net
-    opening = sim.model.geometry.opening
+    opening = sim.opening
     for _ in _track(sim, seconds):
         centre = sim.state.x[n_net]
         assert np.all(np.isfinite(sim.state.x))

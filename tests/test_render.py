@@ -33,7 +33,7 @@ def test_rgb_array_frame(scene: str) -> None:
 def test_rgb_array_list_holds_the_frames_of_a_throw() -> None:
     env = gym.make("NetCatch-v0", render_mode="rgb_array_list").unwrapped
     obs, _ = env.reset(seed=1)
-    oracle = BallisticOracle(env.scene, env.sim.model.geometry.opening)
+    oracle = BallisticOracle(env.scene)
     _, _, _, _, info = env.step(oracle.predict(obs)[0])
     frames = env.render()
     expected = info["sim_time"] * env.metadata["render_fps"]

@@ -25,7 +25,7 @@ def _sim(scene: str) -> Simulator:
 def _launch(sim: Simulator, place: tuple[float, float, float], action: tuple[float, float, float]):
     cfg = sim.config.throw
     rng = np.random.default_rng(0)
-    base = sample_thrower(cfg, sim.model.geometry.opening, rng)
+    base = sample_thrower(cfg, sim.opening, rng)
     lerp = [lo + u * (hi - lo) for u, (lo, hi) in zip(place, (cfg.distance, cfg.bearing, cfg.height))]
     thrower = Thrower(distance=lerp[0], bearing=lerp[1], height=lerp[2], centre=base.centre)
     return thrower.position, action_to_velocity(np.array(action), thrower, cfg)
@@ -75,7 +75,7 @@ def test_fast_path_agrees_with_full_simulation(scene: str) -> None:
 def test_action_and_velocity_are_inverse() -> None:
     sim = _sim("basket")
     cfg = sim.config.throw
-    thrower = sample_thrower(cfg, sim.model.geometry.opening, np.random.default_rng(3))
+    thrower = sample_thrower(cfg, sim.opening, np.random.default_rng(3))
     action = np.array([0.3, -0.7, 0.2])
     velocity = action_to_velocity(action, thrower, cfg)
     assert np.allclose(velocity_to_action(velocity, thrower, cfg), action)

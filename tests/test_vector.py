@@ -29,7 +29,7 @@ def test_vector_env_equals_single_envs_with_the_same_seeds(scene: str) -> None:
     obs, _ = vector.reset(seed=100)
     single_obs = np.stack([env.reset(seed=100 + i)[0] for i, env in enumerate(singles)])
     assert np.array_equal(obs, single_obs)
-    oracle = BallisticOracle(singles[0].scene, singles[0].sim.model.geometry.opening)
+    oracle = BallisticOracle(singles[0].scene)
     rng = np.random.default_rng(0)
     finals = 0
     for _ in range(5):

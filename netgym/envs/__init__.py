@@ -1,5 +1,5 @@
 """Gymnasium environments of netgym."""
 
-from netgym.envs.net_catch import NetCatchEnv
+from netgym.envs.net_catch import NetCatchEnv, ObservationIndex
 
-__all__ = ["NetCatchEnv"]
+__all__ = ["NetCatchEnv", "ObservationIndex"]

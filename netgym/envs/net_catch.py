@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from enum import IntEnum
 from pathlib import Path
 from typing import Any
 
@@ -16,6 +17,18 @@ from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
 
 REWARD_MODES = ("sparse", "shaped")
+
+
+class ObservationIndex(IntEnum):
+    """Where each quantity sits in a NetCatch-v0 observation (see :class:`NetCatchEnv`)."""
+
+    DISTANCE = 0        # horizontal distance from the thrower to the opening's centre (m)
+    HEIGHT = 1          # release height minus the opening centre's height (m)
+    BEARING_COS = 2     # cosine of the thrower's bearing around the net
+    BEARING_SIN = 3     # sine of the thrower's bearing
+    CAUGHT = 4          # balls caught so far / balls per episode
+    THROWS_LEFT = 5     # throws left / balls per episode
+    PILE_HEIGHT = 6     # highest caught ball (or the net's lowest point) minus the opening centre's height (m)
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
 SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
 
@@ -42,7 +55,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     ## Observation space
 
-    ``Box(low, high, (7,), float32)``:
+    ``Box(low, high, (7,), float32)``; :class:`ObservationIndex` (also
+    ``env.observation_structure``) names the positions:
 
     | index | meaning | unit |
     |---|---|---|
@@ -117,6 +131,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
         self.observation_space = self._observation_space()
+        self.observation_structure = {index.name.lower(): int(index) for index in ObservationIndex}
         self.thrower: Thrower | None = None
         self._throws_done = 0
         self._caught = 0
@@ -137,10 +152,14 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         balls = self.sim.ball_positions
         pile = float(balls[:, 2].max()) if len(balls) else self._floor
         bearing = math.radians(self.thrower.bearing)
-        obs = np.array([self.thrower.distance, self.thrower.height - cz, math.cos(bearing), math.sin(bearing),
-                        self._caught / self.balls_per_episode,
-                        (self.balls_per_episode - self._throws_done) / self.balls_per_episode, pile - cz],
-                       dtype=np.float32)
+        obs = np.empty(len(ObservationIndex), dtype=np.float32)
+        obs[ObservationIndex.DISTANCE] = self.thrower.distance
+        obs[ObservationIndex.HEIGHT] = self.thrower.height - cz
+        obs[ObservationIndex.BEARING_COS] = math.cos(bearing)
+        obs[ObservationIndex.BEARING_SIN] = math.sin(bearing)
+        obs[ObservationIndex.CAUGHT] = self._caught / self.balls_per_episode
+        obs[ObservationIndex.THROWS_LEFT] = (self.balls_per_episode - self._throws_done) / self.balls_per_episode
+        obs[ObservationIndex.PILE_HEIGHT] = pile - cz
         return np.clip(obs, self.observation_space.low, self.observation_space.high)
 
     # ------------------------------------------------------------------ gym API

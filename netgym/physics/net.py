@@ -104,7 +104,7 @@ def build_net(cfg: NetConfig, keep_fixed_pairs: bool = False) -> NetGeometry:
         springs=springs[order],
         spring_kind=kinds[order],
         poles=_poles(cfg, lower, upper, open_axis, open_side),
-        opening=_opening(lower, upper, open_axis, open_side),
+        opening=Opening.of_net(cfg),
     )
 
 
@@ -124,15 +124,3 @@ def _poles(cfg: NetConfig, lower: np.ndarray, upper: np.ndarray, open_axis: int,
         if max(a[2], b[2]) > 0.0:  # an edge lying on the ground is no pole
             poles.append(np.concatenate([a, b]))
     return np.array(poles, dtype=np.float64).reshape(-1, 6)
-
-
-def _opening(lower: np.ndarray, upper: np.ndarray, axis: int, side: int) -> Opening:
-    u, w = [a for a in range(3) if a != axis]
-    return Opening(
-        axis=axis,
-        sign=1 if side else -1,
-        plane=float(upper[axis] if side else lower[axis]),
-        tangent_axes=(u, w),
-        tangent_lower=(float(lower[u]), float(lower[w])),
-        tangent_upper=(float(upper[u]), float(upper[w])),
-    )

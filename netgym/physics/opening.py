@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from netgym.config import NetConfig
+
 
 @dataclass(frozen=True)
 class Opening:
@@ -26,6 +28,16 @@ class Opening:
     tangent_axes: tuple[int, int]
     tangent_lower: tuple[float, float]
     tangent_upper: tuple[float, float]
+
+    @classmethod
+    def of_net(cls, net: NetConfig) -> "Opening":
+        """The opening of a scene's net: its ``open_face`` of the box ``lower``..``upper``."""
+        axis, upper_side = "xyz".index(net.open_face[1]), net.open_face[0] == "+"
+        u, w = [a for a in range(3) if a != axis]
+        return cls(axis=axis, sign=1 if upper_side else -1,
+                   plane=float(net.upper[axis] if upper_side else net.lower[axis]), tangent_axes=(u, w),
+                   tangent_lower=(float(net.lower[u]), float(net.lower[w])),
+                   tangent_upper=(float(net.upper[u]), float(net.upper[w])))
 
     @property
     def centre(self) -> np.ndarray:
