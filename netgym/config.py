@@ -16,6 +16,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, Mapping
 
+import numpy as np
+
 from netgym.errors import ConfigError
 from netgym.physics.kinds import Integrator
 
@@ -191,9 +193,9 @@ def _scalar(value: Any, kind: type, name: str, f: dataclasses.Field) -> Any:
         if choices and value not in choices:
             raise ConfigError(f"{name} = {value!r} is not allowed; choose one of {list(choices)}")
         return value
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise ConfigError(f"{name} must be a number, got {value!r}")
-    if kind is int and not isinstance(value, int):
+    if kind is int and not isinstance(value, (int, np.integer)):
         raise ConfigError(f"{name} must be an integer, got {value!r}")
     spec = f.metadata.get("range")
     if spec and not _in_range(float(value), spec):
@@ -311,7 +313,10 @@ def load_scene(scene: str | Path = "basket", overrides: Mapping[str, Any] | None
         if not path.is_file():
             raise ConfigError(f"scene {str(scene)!r} is neither a built-in scene "
                               f"{list(BUILTIN_SCENES)} nor an existing TOML file")
-        text = path.read_text()
+        try:
+            text = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError as exc:
+            raise ConfigError(f"scene file {str(path)!r} is not UTF-8 text (a TOML file is): {exc}") from exc
     cfg = loads(text)
     return cfg.replace(overrides) if overrides else cfg
 

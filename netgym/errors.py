@@ -21,3 +21,7 @@ class SimulationDivergedError(NetgymError, FloatingPointError):
     The simulator restores the state it had before the failing call, so the object stays
     usable (for example with a smaller ``dt`` or the implicit integrator).
     """
+
+
+class EpisodeEndedError(NetgymError, RuntimeError):
+    """``step`` was called on an episode that has ended (or before the first ``reset``)."""

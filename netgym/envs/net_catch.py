@@ -5,13 +5,14 @@ from __future__ import annotations
 import math
 from enum import IntEnum
 from pathlib import Path
-from typing import Any
+from typing import Any, Mapping
 
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
 from netgym.config import SceneConfig, load_scene
+from netgym.errors import EpisodeEndedError
 from netgym.launch import Thrower, action_to_velocity, opening_miss_distance, sample_thrower
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
@@ -81,7 +82,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     ## Episode end
 
-    Terminated after ``balls_per_episode`` throws. Never truncated.
+    Terminated after ``balls_per_episode`` throws. Never truncated. ``step`` on an ended episode
+    raises :class:`~netgym.errors.EpisodeEndedError` (no reward is ever paid beyond the episode).
 
     ## Info
 
@@ -113,8 +115,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
             raise ValueError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
-        if not isinstance(balls_per_episode, int) or not 1 <= balls_per_episode <= 50:
+        if not _is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
             raise ValueError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
+        if not isinstance(fast, (bool, np.bool_)):
+            raise ValueError(f"fast = {fast!r}; allowed: True or False")
         config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
         changes = dict(overrides or {})
         if integrator is not None:
@@ -123,16 +127,17 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             changes["simulation.dt"] = dt
         self.sim = Simulator(config.replace(changes) if changes else config)
         self.scene = self.sim.config
-        self.balls_per_episode = balls_per_episode
+        self.balls_per_episode = int(balls_per_episode)
         self.reward_mode = reward_mode
         self.render_mode = render_mode
-        self.fast = fast
+        self.fast = bool(fast)
         self._centre = self.sim.opening.centre
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
         self.observation_space = self._observation_space()
         self.observation_structure = {index.name.lower(): int(index) for index in ObservationIndex}
         self.thrower: Thrower | None = None
+        self._ended = False
         self._throws_done = 0
         self._caught = 0
         self._renderer = None
@@ -164,11 +169,17 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     # ------------------------------------------------------------------ gym API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict]:
-        """Start an episode: the net at rest and empty, a new thrower."""
+        """Start an episode: the net at rest and empty, a new thrower. No ``options`` are
+        defined yet: any given raise a ValueError."""
+        if options is not None and not isinstance(options, Mapping):
+            raise ValueError(f"options must be a dict or None, got {type(options).__name__}")
+        if options:
+            raise ValueError(f"unknown reset option(s) {sorted(map(str, options))}; NetCatch-v0 defines none")
         super().reset(seed=seed)
         self.sim.reset()
         self._throws_done = 0
         self._caught = 0
+        self._ended = False
         self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
         self._frames = []
         if self.render_mode in ("human", "rgb_array_list"):
@@ -178,7 +189,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict]:
         """Throw one ball with launch ``action`` and simulate until its outcome is decided."""
         if self.thrower is None:
-            raise RuntimeError("call reset() before step()")
+            raise EpisodeEndedError("call reset() before step()")
+        if self._ended:
+            raise EpisodeEndedError(f"the episode ended after its {self.balls_per_episode} throws "
+                                    f"(balls_per_episode); call reset() before step()")
         velocity = self.action_velocity(action)
         launch = self.thrower.position
         frame_dt = 1.0 / self.metadata["render_fps"] if self.render_mode in ("human", "rgb_array_list") else None
@@ -188,7 +202,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def action_velocity(self, action: np.ndarray) -> np.ndarray:
         """Validate an action and map it to a launch velocity for the current thrower."""
-        a = np.asarray(action, dtype=np.float64)
+        a = np.asarray(action)
+        if a.dtype.kind not in "fiu":
+            raise ValueError(f"action must be an array of real numbers, got {a.dtype} values: {action!r}")
+        a = a.astype(np.float64)
         if a.shape != (3,):
             raise ValueError(f"action must have shape (3,), got {a.shape}")
         if not np.all(np.isfinite(a)):
@@ -207,6 +224,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                                          self.sim.model.gravity, self.sim.model.ball_radius)
             reward = SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
         terminated = self._throws_done >= self.balls_per_episode
+        self._ended = terminated
         if not terminated:
             self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
         info = {"captured": result.captured, "reason": result.reason,
@@ -262,3 +280,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         state = self.__dict__.copy()
         state["_renderer"] = None  # windows and fonts do not travel; a new one opens on demand
         return state
+
+
+def _is_integer(value: Any) -> bool:
+    """True for an int (Python or NumPy) that is not a bool."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))

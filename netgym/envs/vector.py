@@ -14,6 +14,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from netgym.envs.net_catch import NetCatchEnv
+from netgym.errors import NetgymError
 from netgym.physics.integration import Workspace
 from netgym.physics.plans import drive
 
@@ -25,17 +26,24 @@ class NetCatchVectorEnv(VectorEnv):
     observation of the next episode, and the last observation and info are in
     ``infos["final_obs"]`` and ``infos["final_info"]`` (masked by ``infos["_final_obs"]``).
     Keyword arguments are those of :class:`NetCatchEnv`; ``render_mode`` is not supported.
+    ``max_episode_steps`` truncates each episode after that many throws, as ``gym.make``'s
+    ``TimeLimit`` does. A step that fails (a divergence in any sub-environment) leaves every
+    sub-environment as it was before the step and raises the error, naming the sub-environment.
     """
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": []}
 
-    def __init__(self, num_envs: int = 1, **kwargs: Any) -> None:
-        if not isinstance(num_envs, int) or num_envs < 1:
+    def __init__(self, num_envs: int = 1, max_episode_steps: int | None = None, **kwargs: Any) -> None:
+        if not isinstance(num_envs, int) or isinstance(num_envs, bool) or num_envs < 1:
             raise ValueError(f"num_envs = {num_envs!r}; allowed: an integer >= 1")
+        if max_episode_steps is not None and (not isinstance(max_episode_steps, int)
+                                              or isinstance(max_episode_steps, bool) or max_episode_steps < 1):
+            raise ValueError(f"max_episode_steps = {max_episode_steps!r}; allowed: None or an integer >= 1")
         if kwargs.get("render_mode") is not None:
             raise ValueError("NetCatchVectorEnv does not render; use NetCatchEnv for render_mode")
         kwargs.pop("render_mode", None)
-        kwargs.pop("max_episode_steps", None)
+        self.max_episode_steps = max_episode_steps
+        self._episode_steps = np.zeros(num_envs, dtype=np.int64)
         self.envs = [NetCatchEnv(**kwargs) for _ in range(num_envs)]
         self.num_envs = num_envs
         self.single_observation_space = self.envs[0].observation_space
@@ -56,6 +64,7 @@ class NetCatchVectorEnv(VectorEnv):
         observations, infos = [], {}
         for i, (env, s) in enumerate(zip(self.envs, seeds)):
             obs, info = env.reset(seed=s, options=options)
+            self._episode_steps[i] = 0
             observations.append(obs)
             infos = self._add_info(infos, info, i)
         return np.stack(observations), infos
@@ -73,16 +82,27 @@ class NetCatchVectorEnv(VectorEnv):
             launches.append(launch)
             velocities.append(velocity)
             plans.append(env.sim.throw_plan(launch, velocity, fast=env.fast))
-        results = drive([env.sim for env in self.envs], plans, self._workspace)
+        checkpoints = [env.sim.checkpoint() for env in self.envs]
+        try:
+            results = drive([env.sim for env in self.envs], plans, self._workspace,
+                            names=[f"sub-environment {i}" for i in range(self.num_envs)])
+        except NetgymError as error:
+            for env, checkpoint in zip(self.envs, checkpoints):
+                env.sim.restore(checkpoint)
+            raise type(error)(f"{error} (every sub-environment was left as before this step)") from error
+        self._episode_steps += 1
         observations, rewards = [], np.zeros(self.num_envs)
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)
         infos: dict[str, Any] = {}
         for i, env in enumerate(self.envs):
             obs, rewards[i], terminated[i], truncated[i], info = env.after_throw(launches[i], velocities[i], results[i])
+            if self.max_episode_steps is not None and not terminated[i]:
+                truncated[i] = self._episode_steps[i] >= self.max_episode_steps
             if terminated[i] or truncated[i]:
                 infos = self._add_info(infos, {"final_obs": obs, "final_info": info}, i)
                 obs, _ = env.reset()
+                self._episode_steps[i] = 0
             observations.append(obs)
             infos = self._add_info(infos, info, i)
         return np.stack(observations), rewards, terminated, truncated, infos

@@ -14,6 +14,7 @@ from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol, Union
 
+from netgym.errors import NetgymError
 from netgym.physics.integration import Integrand, Workspace, integrate
 from netgym.physics.model import KernelModel, Settings
 
@@ -51,13 +52,14 @@ class Drivable(Integrand, Protocol):
 
 
 def drive(sims: Sequence[Drivable], plans: Sequence[Plan], workspace: Workspace,
-          observer: Callable[[Any], None] | None = None) -> list[Any]:
+          observer: Callable[[Any], None] | None = None, names: Sequence[str] | None = None) -> list[Any]:
     """Carry out ``plans[i]`` on ``sims[i]`` until every plan has returned; returns their results.
 
     Each round integrates all pending :class:`Integrate` requests that share an integrator and
     dt in one :func:`~netgym.physics.integration.integrate` call, then resumes every plan (with
     the divergence error of its own integration, if any). ``observer(sim)`` is called after
-    every request carried out without error, for example to record frames.
+    every request carried out without error, for example to record frames. A netgym error
+    raised by plan ``i`` propagates, its message prefixed with ``names[i]`` when names are given.
     """
     results: list[Any] = [None] * len(plans)
     pending: dict[int, Request] = {}
@@ -68,6 +70,10 @@ def drive(sims: Sequence[Drivable], plans: Sequence[Plan], workspace: Workspace,
         except StopIteration as stop:
             pending.pop(i, None)
             results[i] = stop.value
+        except NetgymError as failure:
+            if names is None:
+                raise
+            raise type(failure)(f"{names[i]}: {failure}") from failure
 
     for i in range(len(plans)):
         resume(i, None)

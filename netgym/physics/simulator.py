@@ -46,6 +46,15 @@ class Energy:
         return self.kinetic + self.spring + self.gravity
 
 
+@dataclass(frozen=True)
+class Checkpoint:
+    """A simulator's state, awake flag and work counters at one moment."""
+
+    state: State
+    awake: bool
+    counters: np.ndarray
+
+
 _SETTLED: dict[SceneConfig, np.ndarray] = {}
 _MODES: dict[tuple[Any, Any], NetModes] = {}
 
@@ -81,7 +90,7 @@ class Simulator:
                 f"simulation.dt = {self.dt:g} s is beyond the linear stability limit "
                 f"{self.stable_dt:.3g} s of {self.integrator.label} on this net (highest frequency "
                 f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
-                f"dt <= {self.stable_dt:.3g} s, or integrator = \"imex_euler\" or \"implicit_euler\"")
+                f"dt <= {self.stable_dt:.3g} s, or integrator = {_stabler_than(self.integrator)}")
         self.state = State.at_rest(self.model, self._settled_positions())
         self._rest_state = self.state.copy()
 
@@ -159,7 +168,7 @@ class Simulator:
             raise ValueError(f"position z = {p[2]:g} m puts the ball (radius {r:g} m) below the ground")
         speed = float(np.linalg.norm(v))
         if speed > MAX_LAUNCH_SPEED:
-            raise ValueError(f"velocity has speed {speed:g} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
+            raise ValueError(f"velocity has speed {speed!r} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
         s = self.state
         s.x = np.vstack([s.x, p])
         s.v = np.vstack([s.v, v])
@@ -185,12 +194,28 @@ class Simulator:
             self.state.v[keep] = kept
         self.awake = False
 
+    def checkpoint(self) -> "Checkpoint":
+        """Everything integration and throws change, to :meth:`restore` later."""
+        return Checkpoint(self.state.copy(), self.awake, self.counters.copy())
+
+    def restore(self, checkpoint: "Checkpoint") -> None:
+        """Return to a :meth:`checkpoint`."""
+        self.state.restore(checkpoint.state)
+        self.awake = checkpoint.awake
+        self.counters[:] = checkpoint.counters
+
     # ------------------------------------------------------------------ stepping
     def step(self, n_steps: int = 1, integrator: str | None = None, dt: float | None = None) -> None:
         """Integrate everything for ``n_steps`` steps (no shortcuts), with the scene's
         integrator and ``dt`` unless others are given (for convergence and stability studies)."""
+        if not isinstance(n_steps, (int, np.integer)) or isinstance(n_steps, (bool, np.bool_)) or n_steps < 0:
+            raise ValueError(f"n_steps = {n_steps!r}; allowed: an integer >= 0")
+        dt = self.dt if dt is None else dt
+        if isinstance(dt, (bool, np.bool_)) or not isinstance(dt, (int, float, np.floating, np.integer)) \
+                or not (math.isfinite(dt) and dt > 0.0):
+            raise ValueError(f"dt = {dt!r}; allowed: a finite number of seconds > 0")
         code = self.integrator if integrator is None else Integrator.parse(integrator)
-        self.run(_request(Integrate(n_steps, code, self.dt if dt is None else dt)))
+        self.run(_request(Integrate(int(n_steps), code, float(dt))))
         self.awake = True
 
     def relax(self, max_time: float = 60.0) -> None:
@@ -248,11 +273,11 @@ class Simulator:
 
     def divergence_advice(self, integrator: int) -> str:
         """What to change after ``integrator`` diverged on this scene."""
-        others = " or ".join(f'"{i.label}"' for i in (Integrator.IMEX_EULER, Integrator.IMPLICIT_EULER)
-                             if i != integrator)
         limit = stable_dt(integrator, self.modes)
-        bound = f" (linear stability limit of {Integrator(integrator).label} here: {limit:.3g} s)" if math.isfinite(limit) else ""
-        return f"Use a smaller simulation.dt{bound}, or integrator = {others}"
+        if not math.isfinite(limit):
+            return "Use a smaller simulation.dt"
+        return (f"Use a smaller simulation.dt (linear stability limit of {Integrator(integrator).label} here: "
+                f"{limit:.3g} s), or integrator = {_stabler_than(integrator)}")
 
     def _net_modes(self) -> NetModes:
         """Fastest mode of the net linearised about its built shape (cached per net and springs)."""
@@ -275,6 +300,11 @@ class Simulator:
                 self.run(self.relax_plan(60.0, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT))
             _SETTLED[key] = self.state.x.copy()
         return _SETTLED[key]
+
+
+def _stabler_than(integrator: int) -> str:
+    """The integrators to suggest instead of ``integrator`` when its dt is too large."""
+    return " or ".join(f'"{i.label}"' for i in (Integrator.IMEX_EULER, Integrator.IMPLICIT_EULER) if i != integrator)
 
 
 def _request(request: Integrate) -> Plan:

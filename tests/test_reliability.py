@@ -1,0 +1,123 @@
+"""Failures that leave every state as it was, and clear errors for bad arguments."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from agents.oracle import BallisticOracle
+from netgym.config import load_scene
+from netgym.envs import NetCatchEnv
+from netgym.envs.vector import NetCatchVectorEnv
+from netgym.errors import ConfigError, EpisodeEndedError, SimulationDivergedError
+from netgym.physics.simulator import Simulator
+
+
+def _snapshot(env: NetCatchEnv) -> tuple:
+    s = env.sim.state
+    return (s.x.tobytes(), s.v.tobytes(), s.entered.tobytes(), s.time, env.sim.awake, env.sim.substeps,
+            env.thrower, env.np_random.bit_generator.state["state"]["state"])
+
+
+def test_a_failed_vector_step_leaves_every_sub_environment_as_before_and_names_the_failing_one() -> None:
+    vec = NetCatchVectorEnv(num_envs=4, overrides={"simulation.divergence_speed": 15.5})
+    obs, _ = vec.reset(seed=0)
+    actions = BallisticOracle(vec.envs[0].scene).predict(obs)[0]
+    actions[2] = [1.0, -1.0, 0.0]  # 16 m/s: beyond the divergence speed
+    before = [_snapshot(env) for env in vec.envs]
+    with pytest.raises(SimulationDivergedError, match="sub-environment 2: .*every sub-environment was left as before"):
+        vec.step(actions)
+    assert [_snapshot(env) for env in vec.envs] == before
+    assert [env.sim.n_balls for env in vec.envs] == [0, 0, 0, 0]
+    actions[2] = actions[1]
+    _, rewards, _, _, _ = vec.step(actions)  # still usable
+    assert rewards.shape == (4,)
+
+
+def test_vector_env_truncates_at_max_episode_steps_as_make_does() -> None:
+    vec = NetCatchVectorEnv(num_envs=2, balls_per_episode=5, max_episode_steps=2)
+    vec.reset(seed=1)
+    actions = np.zeros((2, 3), dtype=np.float32)
+    _, _, terminated, truncated, _ = vec.step(actions)
+    assert not truncated.any() and not terminated.any()
+    _, _, terminated, truncated, infos = vec.step(actions)
+    assert truncated.all() and not terminated.any() and infos["_final_obs"].all()
+    with pytest.raises(ValueError, match="max_episode_steps = 0"):
+        NetCatchVectorEnv(num_envs=1, max_episode_steps=0)
+
+
+def test_stepping_an_ended_episode_raises_and_pays_nothing() -> None:
+    env = NetCatchEnv(balls_per_episode=1)
+    obs, _ = env.reset(seed=0)
+    _, _, terminated, _, _ = env.step(BallisticOracle(env.scene).predict(obs)[0])
+    assert terminated
+    with pytest.raises(EpisodeEndedError, match="call reset"):
+        env.step(np.zeros(3, dtype=np.float32))
+    assert env.sim.n_balls <= 1
+    env.reset(seed=1)
+    env.step(np.zeros(3, dtype=np.float32))
+
+
+@pytest.mark.parametrize(("kwargs", "message"), [
+    ({"fast": "no"}, "fast = 'no'"),
+    ({"balls_per_episode": True}, "balls_per_episode = True"),
+])
+def test_loosely_typed_env_arguments_are_refused(kwargs: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        NetCatchEnv(**kwargs)
+
+
+@pytest.mark.parametrize("action", [np.array([True, False, True]), np.array([1j, 0, 0]), "abc",
+                                    ["0.1", "0.2", "0.3"]])
+def test_non_real_actions_are_refused_with_a_clear_error(action: object) -> None:
+    env = NetCatchEnv()
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="action must be an array of real numbers"):
+        env.step(action)
+    assert env.sim.n_balls == 0
+
+
+@pytest.mark.parametrize(("options", "message"), [("fast", "options must be a dict"),
+                                                  ({"thrower": 3}, r"unknown reset option\(s\) \['thrower'\]")])
+def test_reset_options_are_checked(options: object, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        NetCatchEnv().reset(seed=0, options=options)
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    ({"n_steps": -5}, "n_steps = -5"), ({"n_steps": 2.5}, "n_steps = 2.5"), ({"n_steps": True}, "n_steps = True"),
+    ({"dt": -1e-3}, "dt = -0.001"), ({"dt": float("nan")}, "dt = nan"),
+    ({"integrator": "verlet"}, r"integrator = 'verlet' is not one of \['explicit_euler'"),
+])
+def test_simulator_step_refuses_bad_arguments_and_changes_nothing(basket: Simulator, args: dict, message: str) -> None:
+    before = basket.state.copy()
+    with pytest.raises(ValueError, match=message):
+        basket.step(**args)
+    assert basket.state.time == before.time and np.array_equal(basket.state.x, before.x)
+
+
+def test_scene_file_that_is_not_text_gets_a_config_error(tmp_path) -> None:
+    path = tmp_path / "scene.toml"
+    path.write_bytes(bytes(range(256)))
+    with pytest.raises(ConfigError, match="is not UTF-8 text"):
+        load_scene(path)
+
+
+def test_numpy_numbers_are_accepted_in_overrides() -> None:
+    cfg = load_scene("basket", {"simulation.time_limit": np.float32(4.0), "simulation.cg_max_iterations": np.int64(50)})
+    assert cfg.simulation.time_limit == 4.0 and cfg.simulation.cg_max_iterations == 50
+
+
+def test_divergence_advice_never_suggests_the_integrator_that_diverged() -> None:
+    sim = Simulator("basket", {"simulation.divergence_speed": 15.5})
+    sim.launch_ball([0.0, 0.0, 2.0], [0.0, 0.0, -16.0])
+    with pytest.raises(SimulationDivergedError) as failure:
+        sim.step(1)
+    message = str(failure.value)
+    assert message.startswith("imex_euler at dt = 0.002 s diverged")
+    assert 'integrator = "implicit_euler"' in message and '"imex_euler"' not in message
+
+
+def test_launch_speed_error_prints_enough_digits(basket: Simulator) -> None:
+    with pytest.raises(ValueError, match=r"speed 100\.00000000000001 m/s"):
+        basket.launch_ball([0.0, 0.0, 5.0], [100.00000000000001, 0.0, 0.0])
