@@ -26,6 +26,34 @@ from netgym.physics.kinds import Contact
 from netgym.physics.rows import add_scaled
 
 
+COINCIDENT = 1e-24   # m^2: squared distances below this leave no direction between two centres
+
+
+@njit(cache=True)
+def _direction(dx, dy, dz, dist2, ex, ey, ez):
+    """Unit vector along (dx, dy, dz), whose squared length is ``dist2``. When the two centres
+    coincide, a defined direction instead: perpendicular to the feature's axis (ex, ey, ez)
+    (zero for a point) along the coordinate axis least aligned with it, or +z for a point."""
+    if dist2 >= COINCIDENT:
+        dist = math.sqrt(dist2)
+        return dx / dist, dy / dist, dz / dist
+    if ex == 0.0 and ey == 0.0 and ez == 0.0:
+        return 0.0, 0.0, 1.0
+    ax, ay, az = abs(ex), abs(ey), abs(ez)
+    px, py, pz = 0.0, 0.0, 0.0
+    if az <= ax and az <= ay:
+        pz = 1.0
+    elif ay <= ax:
+        py = 1.0
+    else:
+        px = 1.0
+    len2 = ex * ex + ey * ey + ez * ez
+    along = (px * ex + py * ey + pz * ez) / len2
+    nx, ny, nz = px - along * ex, py - along * ey, pz - along * ez
+    norm = math.sqrt(nx * nx + ny * ny + nz * nz)
+    return nx / norm, ny / norm, nz / norm
+
+
 @njit(cache=True)
 def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, friction, threshold):
     """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j``.
@@ -106,10 +134,10 @@ def _ball_poles(x, v, b, radius, poles, coef, threshold):
         dy = x[b, 1] - (ay + t * ey)
         dz = x[b, 2] - (az + t * ez)
         dist2 = dx * dx + dy * dy + dz * dz
-        if dist2 >= reach * reach or dist2 < 1e-24:
+        if dist2 >= reach * reach:
             continue
-        dist = math.sqrt(dist2)
-        _static_response(x, v, b, dx / dist, dy / dist, dz / dist, reach - dist,
+        nx, ny, nz = _direction(dx, dy, dz, dist2, ex, ey, ez)
+        _static_response(x, v, b, nx, ny, nz, reach - math.sqrt(dist2),
                          coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold)
 
 
@@ -126,10 +154,10 @@ def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
             continue
         dz = x[k, 2] - x[b, 2]
         dist2 = dx * dx + dy * dy + dz * dz
-        if dist2 >= r2 or dist2 < 1e-24:
+        if dist2 >= r2:
             continue
-        dist = math.sqrt(dist2)
-        _pair_response(x, v, inv_mass, b, k, k, 0.0, dx / dist, dy / dist, dz / dist, radius - dist,
+        nx, ny, nz = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
+        _pair_response(x, v, inv_mass, b, k, k, 0.0, -nx, -ny, -nz, radius - math.sqrt(dist2),
                        e, mu, threshold)
     for s in range(segments.shape[0]):
         i = segments[s, 0]
@@ -143,7 +171,7 @@ def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
         ey = x[j, 1] - x[i, 1]
         ez = x[j, 2] - x[i, 2]
         len2 = ex * ex + ey * ey + ez * ez
-        if len2 < 1e-24:
+        if len2 < COINCIDENT:
             continue
         t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
         if t <= 0.0 or t >= 1.0:
@@ -152,10 +180,10 @@ def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
         dy = x[i, 1] + t * ey - cy
         dz = x[i, 2] + t * ez - cz
         dist2 = dx * dx + dy * dy + dz * dz
-        if dist2 >= r2 or dist2 < 1e-24:
+        if dist2 >= r2:
             continue
-        dist = math.sqrt(dist2)
-        _pair_response(x, v, inv_mass, b, i, j, t, dx / dist, dy / dist, dz / dist, radius - dist,
+        nx, ny, nz = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
+        _pair_response(x, v, inv_mass, b, i, j, t, -nx, -ny, -nz, radius - math.sqrt(dist2),
                        e, mu, threshold)
 
 
@@ -180,10 +208,10 @@ def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, thres
             dy = x[c, 1] - x[b, 1]
             dz = x[c, 2] - x[b, 2]
             dist2 = dx * dx + dy * dy + dz * dz
-            if dist2 >= reach * reach or dist2 < 1e-24:
+            if dist2 >= reach * reach:
                 continue
-            dist = math.sqrt(dist2)
-            _pair_response(x, v, inv_mass, b, c, c, 0.0, dx / dist, dy / dist, dz / dist, reach - dist,
+            nx, ny, nz = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
+            _pair_response(x, v, inv_mass, b, c, c, 0.0, nx, ny, nz, reach - math.sqrt(dist2),
                            coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
@@ -206,7 +234,7 @@ def clearance(x, n_net, row, radius, segments, poles):
         j = segments[s, 1]
         ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
         len2 = ex * ex + ey * ey + ez * ez
-        if len2 < 1e-24:
+        if len2 < COINCIDENT:
             continue
         t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
         t = min(max(t, 0.0), 1.0)

@@ -168,7 +168,7 @@ class Simulator:
             raise ValueError(f"position z = {p[2]:g} m puts the ball (radius {r:g} m) below the ground")
         speed = float(np.linalg.norm(v))
         if speed > MAX_LAUNCH_SPEED:
-            raise ValueError(f"velocity has speed {speed!r} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
+            raise ValueError(f"velocity has speed {np.format_float_positional(speed, trim='-')} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
         s = self.state
         s.x = np.vstack([s.x, p])
         s.v = np.vstack([s.v, v])

@@ -126,6 +126,8 @@ class Throw:
                 if reason is not None:
                     break
                 sim.awake = True
+                if self._clearance(row) < 0.0:
+                    continue  # launched overlapping something: let the contacts act before deciding
             elif round((deadline - s.time) / cfg.dt) > 0:
                 yield Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
             if deadline - s.time < 0.5 * cfg.dt:
