@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import textwrap
@@ -37,10 +38,13 @@ def _write_package(root: Path, returned: int) -> Path:
     return pkg
 
 
-def _call(root: Path, guarded: bool) -> str:
+def _call(root: Path, guarded: bool, cache_dir: Path | None = None) -> str:
     guard = "c.drop_stale_kernels(Path('pkg')); " if guarded else ""
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    if cache_dir is not None:
+        env["NUMBA_CACHE_DIR"] = str(cache_dir)
     done = subprocess.run([sys.executable, "-c", RUN.format(guard)], cwd=root, capture_output=True, text=True,
-                          timeout=300, check=True)
+                          timeout=300, check=True, env=env)
     return done.stdout.strip()
 
 
@@ -62,6 +66,16 @@ def test_the_guard_recompiles_every_kernel_after_any_source_change(tmp_path: Pat
     assert sorted(p.name for p in (pkg / "__pycache__").glob("*.nb[ic]")) == cached
     _write_package(tmp_path, 2)
     assert _call(tmp_path, guarded=True) == "2"
+
+
+def test_the_guard_works_where_numba_cache_dir_puts_the_cache(tmp_path: Path) -> None:
+    cache_dir = tmp_path / "numba-cache"
+    pkg = _write_package(tmp_path, 1)
+    assert _call(tmp_path, guarded=False, cache_dir=cache_dir) == "1"
+    _write_package(tmp_path, 2)
+    assert _call(tmp_path, guarded=False, cache_dir=cache_dir) == "1"  # the hazard there too
+    assert _call(tmp_path, guarded=True, cache_dir=cache_dir) == "2"
+    assert list(cache_dir.rglob(STAMP)) and not (pkg / "__pycache__" / STAMP).exists()
 
 
 def test_a_folder_that_cannot_hold_a_cache_is_left_alone(tmp_path: Path) -> None:

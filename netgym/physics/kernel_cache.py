@@ -3,7 +3,9 @@
 numba checks a cached kernel only against the source file it is defined in, not against the
 files of the kernels it calls: after an edit of ``integrators.py`` (an editable install updated
 by ``git pull``, say), the cached ``stepping.advance`` would go on running the old integrator.
-:func:`drop_stale_kernels` therefore keys the whole folder's cache on a hash of all its sources.
+:func:`drop_stale_kernels` therefore keys the whole folder's cache on a hash of all its sources,
+wherever numba keeps that cache: next to the sources, under ``NUMBA_CACHE_DIR``, or in the
+user-wide cache numba falls back to when the install folder cannot be written.
 """
 
 from __future__ import annotations
@@ -11,24 +13,42 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+from numba.core.caching import FunctionCache
+
 STAMP = "kernel_sources.sha256"
 
 
+def numba_cache_folder(folder: Path) -> Path | None:
+    """The folder where numba caches the kernels defined in ``folder``'s sources, as numba
+    itself chooses it; None when there are no sources or numba could cache them nowhere."""
+    sources = sorted(folder.glob("*.py"))
+    if not sources:
+        return None
+    namespace: dict = {}
+    exec(compile("def probe():\n    pass\n", str(sources[0]), "exec"), namespace)  # a function "defined" there
+    try:
+        return Path(FunctionCache(namespace["probe"]).cache_path)
+    except RuntimeError:  # numba: no writable place to cache functions of this file
+        return None
+
+
 def drop_stale_kernels(folder: Path) -> None:
-    """Delete every cached numba kernel under ``folder/__pycache__`` when any ``*.py`` source
-    of ``folder`` changed since the cache was stamped, so that all kernels recompile together.
-    Does nothing where the folder cannot be written (numba then caches elsewhere or not at all)."""
+    """Delete every cached numba kernel of ``folder``'s sources when any ``*.py`` source of
+    ``folder`` changed since the cache was stamped, so that all kernels recompile together.
+    Does nothing where numba caches nothing (or the cache cannot be written)."""
+    cache = numba_cache_folder(folder)
+    if cache is None:
+        return
     digest = hashlib.sha256()
     for source in sorted(folder.glob("*.py")):
         digest.update(source.name.encode() + b"\0" + source.read_bytes())
-    cache = folder / "__pycache__"
     stamp = cache / STAMP
     try:
         if stamp.is_file() and stamp.read_text() == digest.hexdigest():
             return
         for kernel in (*cache.glob("*.nbi"), *cache.glob("*.nbc")):
             kernel.unlink(missing_ok=True)
-        cache.mkdir(exist_ok=True)
+        cache.mkdir(parents=True, exist_ok=True)
         stamp.write_text(digest.hexdigest())
     except OSError:
         return
