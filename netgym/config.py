@@ -24,6 +24,9 @@ from netgym.physics.kinds import Integrator
 INTEGRATORS = Integrator.labels()
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
 BUILTIN_SCENES = ("basket", "goal")
+MAX_NET_PARTICLES = 20_000     # beyond this a scene takes minutes to build and settle
+MAX_SPRING_RATE = 2e9          # spring evaluations per simulated second: ~15 s of one core
+SPRINGS_PER_PARTICLE = 6       # structural, shear and bending: at most two of each per particle
 
 
 def _num(lo: float, hi: float, *, lo_open: bool = False, hi_open: bool = False) -> Any:
@@ -242,6 +245,25 @@ def _check_consistency(cfg: SceneConfig) -> None:
         lo, hi = getattr(cfg.throw, key)
         if lo > hi:
             raise ConfigError(f"throw.{key} = [{lo}, {hi}] must be an increasing [min, max] pair")
+    _check_cost(cfg)
+
+
+def _check_cost(cfg: SceneConfig) -> None:
+    """Refuse scenes whose simulation would run for hours: too many particles, or a dt so small
+    that a simulated second costs more than MAX_SPRING_RATE spring evaluations."""
+    a, b, c = cfg.net.particles
+    particles = a * b * c - (a - 2) * (b - 2) * (c - 2)  # the box's surface lattice, an upper bound
+    if particles > MAX_NET_PARTICLES:
+        raise ConfigError(f"net.particles = {list(cfg.net.particles)} makes up to {particles:,} net particles; "
+                          f"allowed: at most {MAX_NET_PARTICLES:,} (building and settling a larger net "
+                          f"takes minutes to hours)")
+    springs = SPRINGS_PER_PARTICLE * particles
+    rate = springs / cfg.simulation.dt
+    if rate > MAX_SPRING_RATE:
+        raise ConfigError(f"simulation.dt = {cfg.simulation.dt:g} s on a net of up to {particles:,} particles costs "
+                          f"about {rate:.2g} spring evaluations per simulated second (settling the net alone takes "
+                          f"seconds of simulated time); allowed: at most {MAX_SPRING_RATE:.0e}: use "
+                          f"simulation.dt >= {springs / MAX_SPRING_RATE:.2g} s or fewer net.particles")
 
 
 def from_dict(table: Mapping[str, Any]) -> SceneConfig:

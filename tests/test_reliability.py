@@ -149,3 +149,14 @@ def test_coincident_centres_are_pushed_apart_along_a_defined_direction() -> None
     reach = pole.model.ball_radius + pole.config.net.pole_radius
     x, y, _ = pole.ball_positions[0]
     assert y >= 1.0 + reach - 1e-9 and x == pytest.approx(1.0, abs=1e-3)  # pushed off the axis along +y
+
+
+@pytest.mark.parametrize(("overrides", "message"), [
+    ({"simulation.dt": 1e-9}, r"simulation\.dt = 1e-09 s .* use simulation\.dt >= 2e-06 s"),
+    ({"net.particles": [200, 200, 200]}, r"net\.particles = \[200, 200, 200\] makes up to 237,608 net particles"),
+])
+def test_scenes_that_would_run_for_hours_are_refused_at_once(overrides: dict, message: str) -> None:
+    with pytest.raises(ConfigError, match=message):
+        load_scene("basket", overrides)
+    with pytest.raises(ConfigError, match=message):
+        NetCatchEnv(overrides=overrides)
