@@ -16,24 +16,20 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.monitor import Monitor
 from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv, VecMonitor
 
+from agents.hyperparams import ENV_KWARGS, POLICY, PPO_PARAMS  # from agents/hyperparams/ppo.yml
 from netgym.envs import NetCatchEnv
 from netgym.envs.sb3 import NetCatchSB3VecEnv
-
-PPO_PARAMS = dict(  # also in agents/hyperparams/ppo.yml for rl_zoo3
-    n_steps=64, batch_size=128, n_epochs=10, learning_rate=1e-3, gamma=0.5, gae_lambda=0.9,
-    ent_coef=0.0, clip_range=0.2, policy_kwargs=dict(net_arch=[64, 64], log_std_init=-0.5),
-)
 
 
 def make_training_env(kind: str, n_envs: int, seed: int) -> VecEnv:
     """The vectorised training environment: ``native`` or ``subproc``."""
     if kind == "native":
-        env = VecMonitor(NetCatchSB3VecEnv(num_envs=n_envs, reward_mode="shaped"))
+        env = VecMonitor(NetCatchSB3VecEnv(num_envs=n_envs, **ENV_KWARGS))
         env.seed(seed)
         return env
     NetCatchEnv()  # compile the kernels once before the workers start
     return make_vec_env("netgym:NetCatch-v0", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
-                        env_kwargs={"reward_mode": "shaped"})
+                        env_kwargs=dict(ENV_KWARGS))
 
 
 class CaptureCurve(BaseCallback):
@@ -106,7 +102,7 @@ def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: in
     eval_callback = EvalCallback(eval_env, n_eval_episodes=eval_episodes, deterministic=True,
                                  eval_freq=max(1, eval_every // n_envs), best_model_save_path=str(out),
                                  callback_after_eval=curve, verbose=0)
-    model = PPO("MlpPolicy", env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
+    model = PPO(POLICY, env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
     model.learn(timesteps, callback=CallbackList([eval_callback, WallClockStop(curve)]))
     model.save(out / "model")
     env.close()

@@ -19,6 +19,7 @@ import ray
 from ray.rllib.algorithms.ppo import PPOConfig
 from ray.tune.registry import register_env
 
+from agents.hyperparams import ENV_KWARGS, PPO_PARAMS, rllib_training  # from agents/hyperparams/ppo.yml
 from netgym.envs import NetCatchEnv
 
 ENV_NAME = "netgym/NetCatch-v0"
@@ -30,14 +31,16 @@ def make_env(env_config: dict) -> NetCatchEnv:
 
 
 def build(env_runners: int, batch: int, minibatch: int, epochs: int):
-    """The PPO algorithm on NetCatch-v0 (shaped reward for training)."""
+    """The PPO algorithm on NetCatch-v0, with the training environment's arguments and the
+    settings RLlib shares with SB3 (learning rate, gamma, lambda, entropy coefficient) from
+    agents/hyperparams/ppo.yml; ``epochs`` overrides its ``n_epochs``."""
     register_env(ENV_NAME, make_env)
     config = (
         PPOConfig()
-        .environment(ENV_NAME, env_config={"reward_mode": "shaped"})
+        .environment(ENV_NAME, env_config=dict(ENV_KWARGS))
         .env_runners(num_env_runners=env_runners, num_envs_per_env_runner=1)
-        .training(train_batch_size_per_learner=batch, minibatch_size=minibatch, num_epochs=epochs,
-                  lr=1e-3, gamma=0.5, lambda_=0.9)
+        .training(**{**rllib_training(), "num_epochs": epochs}, train_batch_size_per_learner=batch,
+                  minibatch_size=minibatch)
     )
     return config.build_algo()
 
@@ -56,7 +59,7 @@ def main() -> None:
     NetCatchEnv()  # compile the numba kernels once, before the env runner processes start
     ray.init(num_cpus=max(2, args.env_runners + 1), include_dashboard=False, log_to_driver=False)
     try:
-        algo = build(args.env_runners, args.batch, min(args.batch, 256), 2 if args.quick else 10)
+        algo = build(args.env_runners, args.batch, min(args.batch, 256), 2 if args.quick else PPO_PARAMS["n_epochs"])
         for i in range(args.iterations):
             result = algo.train()
             runners = result.get("env_runners", {})

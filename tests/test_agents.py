@@ -1,5 +1,5 @@
 """Agents: the oracle's capture rate, the confidence interval, PPO training smoke test, the
-shipped model, and the rl_zoo3 hyperparameters."""
+shipped model, and the PPO settings' one source (agents/hyperparams/ppo.yml)."""
 
 from __future__ import annotations
 
@@ -43,6 +43,21 @@ def test_train_ppo_quick_writes_a_loadable_model(tmp_path: Path) -> None:
     model = load_policy(tmp_path / "model.zip")
     action, _ = model.predict([5.0, -1.2, 1.0, 0.0, 0.0, 1.0, -2.7], deterministic=True)
     assert action.shape == (3,)
+    _assert_trained_with_the_yml_settings(model)
+
+
+def _assert_trained_with_the_yml_settings(model) -> None:
+    """The saved model's hyperparameters are ppo.yml's (read here with yaml, not agents.hyperparams)."""
+    import yaml
+
+    from agents.hyperparams import parse_policy_kwargs
+
+    zoo = yaml.safe_load((ROOT / "agents" / "hyperparams" / "ppo.yml").read_text())["NetCatch-v0"]
+    assert type(model.policy).__name__ == "ActorCriticPolicy" and zoo["policy"] == "MlpPolicy"
+    for key in ("n_steps", "batch_size", "n_epochs", "learning_rate", "gamma", "gae_lambda", "ent_coef", "clip_range"):
+        got = getattr(model, key)
+        assert (got(1.0) if callable(got) else got) == zoo[key], key
+    assert model.policy_kwargs == parse_policy_kwargs(zoo["policy_kwargs"])
 
 
 def test_shipped_model_scores_well_above_random() -> None:
@@ -53,14 +68,49 @@ def test_shipped_model_scores_well_above_random() -> None:
     assert ppo.rate >= 0.5, str(ppo)
 
 
-def test_rl_zoo_hyperparameters_match_the_training_script() -> None:
-    yaml = pytest.importorskip("yaml")
+def test_ppo_settings_have_one_source_the_rl_zoo_yml() -> None:
+    import yaml
+
+    from agents import hyperparams
     from agents.training import PPO_PARAMS
 
-    zoo = yaml.safe_load((ROOT / "agents" / "hyperparams" / "ppo.yml").read_text())["NetCatch-v0"]
+    zoo = yaml.safe_load(hyperparams.PPO_YML.read_text())[hyperparams.ENV_ID]
+    assert PPO_PARAMS is hyperparams.PPO_PARAMS  # training uses the yml's settings, not a copy
+    assert set(zoo) == set(PPO_PARAMS) | set(hyperparams.ZOO_ONLY)  # every yml setting is used or rl_zoo3's own
     for key, value in PPO_PARAMS.items():
-        if key == "policy_kwargs":
-            assert eval(zoo[key], {"dict": dict}) == value  # rl_zoo3 stores it as a string
-        else:
+        if key != "policy_kwargs":
             assert zoo[key] == value, key
-    assert zoo["env_kwargs"] == {"reward_mode": "shaped"}
+    assert PPO_PARAMS["policy_kwargs"] == hyperparams.parse_policy_kwargs(zoo["policy_kwargs"])
+    assert hyperparams.ENV_KWARGS == zoo["env_kwargs"] == {"reward_mode": "shaped"}
+    assert hyperparams.POLICY == zoo["policy"]
+    assert hyperparams.rllib_training() == {name: zoo[key] for key, name in hyperparams.RLLIB_NAMES.items()}
+
+
+def test_ppo_settings_accepted_by_sb3_and_rllib() -> None:
+    import inspect
+
+    from stable_baselines3 import PPO
+
+    from agents import hyperparams
+
+    assert set(hyperparams.PPO_PARAMS) <= set(inspect.signature(PPO).parameters)
+    text = (ROOT / "scripts" / "train_rllib.py").read_text()
+    assert "rllib_training()" in text and "ENV_KWARGS" in text
+    try:
+        from ray.rllib.algorithms.ppo import PPOConfig
+    except ImportError:
+        return  # the rllib extra is not installed
+    config = PPOConfig().training(**hyperparams.rllib_training())
+    for name, value in hyperparams.rllib_training().items():
+        assert getattr(config, name) == value, name
+
+
+@pytest.mark.parametrize("text", ["__import__('os').system('true')", "dict(net_arch=open('x'))",
+                                  "dict(**{'a': 1})", "dict([64])", "list(net_arch=[64])"])
+def test_policy_kwargs_are_parsed_not_evaluated(text: str) -> None:
+    from agents.hyperparams import parse_policy_kwargs
+
+    with pytest.raises(ValueError):
+        parse_policy_kwargs(text)
+    assert parse_policy_kwargs("dict(net_arch=[64, 64], log_std_init=-0.5)") == {"net_arch": [64, 64],
+                                                                                  "log_std_init": -0.5}

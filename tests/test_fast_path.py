@@ -3,7 +3,8 @@ from launch to the time limit, on 1000 seeded throws into the default scene."""
 
 from __future__ import annotations
 
-from scripts.bench_env import compare, sample_throws, summarise
+from netgym.bench.fast_path import compare, summarise
+from netgym.bench.throws import sample_throws
 
 
 def test_fast_path_agrees_with_full_simulation_on_1000_throws() -> None:

@@ -1,0 +1,56 @@
+"""The PPO settings of NetCatch-v0, read from their one source, ``ppo.yml`` in this folder
+(rl_zoo3's format: ``python -m rl_zoo3.train --conf-file agents/hyperparams/ppo.yml`` reads it
+as it is).
+
+- :data:`PPO_PARAMS`: keyword arguments of Stable-Baselines3's ``PPO`` (``agents/training.py``);
+- :data:`POLICY`, :data:`ENV_KWARGS`: the policy class name and the training environment's
+  keyword arguments;
+- :func:`rllib_training`: the settings that RLlib's ``PPOConfig.training`` shares, under its
+  names (``scripts/train_rllib.py``).
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+PPO_YML = Path(__file__).resolve().parent / "ppo.yml"
+ENV_ID = "NetCatch-v0"
+ZOO_ONLY = ("n_envs", "n_timesteps", "policy", "env_kwargs")  # rl_zoo3's run settings, not PPO arguments
+# SB3 name -> RLlib PPOConfig.training name. Not mapped: clip_range, batch sizes and net_arch
+# (train_rllib.py has always run with RLlib's own clip_param, its --batch option and RLlib's
+# default model; taking them from here would change its training).
+RLLIB_NAMES = {"learning_rate": "lr", "gamma": "gamma", "gae_lambda": "lambda_", "n_epochs": "num_epochs",
+               "ent_coef": "entropy_coeff"}
+
+
+def parse_policy_kwargs(text: str) -> dict[str, Any]:
+    """rl_zoo3's ``policy_kwargs`` string, ``dict(name=literal, ...)``, as a dict, without
+    evaluating it: anything but literal values (names, calls, attributes) raises ValueError."""
+    node = ast.parse(text, mode="eval").body
+    if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "dict"
+            and not node.args and all(k.arg is not None for k in node.keywords)):
+        raise ValueError(f"policy_kwargs must read dict(name=literal, ...), not {text!r}")
+    return {k.arg: ast.literal_eval(k.value) for k in node.keywords}
+
+
+def load(path: Path = PPO_YML, env_id: str = ENV_ID) -> dict[str, Any]:
+    """The yml's settings for ``env_id``, with ``policy_kwargs`` parsed into a dict."""
+    settings = dict(yaml.safe_load(path.read_text())[env_id])
+    if isinstance(settings.get("policy_kwargs"), str):
+        settings["policy_kwargs"] = parse_policy_kwargs(settings["policy_kwargs"])
+    return settings
+
+
+SETTINGS = load()
+PPO_PARAMS: dict[str, Any] = {key: value for key, value in SETTINGS.items() if key not in ZOO_ONLY}
+POLICY: str = SETTINGS["policy"]
+ENV_KWARGS: dict[str, Any] = SETTINGS["env_kwargs"]
+
+
+def rllib_training() -> dict[str, Any]:
+    """Keyword arguments of RLlib's ``PPOConfig.training`` for the settings it shares with SB3."""
+    return {RLLIB_NAMES[key]: PPO_PARAMS[key] for key in RLLIB_NAMES}
