@@ -3,7 +3,10 @@
 Every contact removes the overlap (split by inverse mass, so momentum is conserved) and, if
 the bodies approach, applies a normal impulse with restitution (none below the restitution
 threshold, so resting contacts stay still) and a Coulomb friction impulse bounded by
-``friction * normal impulse``. Kinds handled:
+``friction * normal impulse``. Contacts of a ball also hold static friction on positions (as in
+position-based dynamics): when the contact's tangential slip over the substep is within
+``friction * overlap`` it is undone, so a ball at rest on a slope flatter than the friction
+angle stays put instead of creeping downhill by ``g sin(slope) dt`` per second. Kinds handled:
 
 - ball / net particle and ball / structural spring segment (interior points of the segment,
   the impulse shared by its two particles by barycentric weight): springs cannot sink into
@@ -55,11 +58,25 @@ def _direction(dx, dy, dz, dist2, ex, ey, ez):
 
 
 @njit(cache=True)
-def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, friction, threshold):
+def _static_slip(sx, sy, sz, nx, ny, nz, bound):
+    """Static friction on positions (as in position-based dynamics): the tangential part of a
+    contact's slip (sx, sy, sz) over one substep when it is within the Coulomb bound
+    ``friction * depth`` (it is then undone), else zero (the velocity impulse handles sliding)."""
+    along = sx * nx + sy * ny + sz * nz
+    tx, ty, tz = sx - along * nx, sy - along * ny, sz - along * nz
+    if tx * tx + ty * ty + tz * tz > bound * bound:
+        return 0.0, 0.0, 0.0
+    return tx, ty, tz
+
+
+@njit(cache=True)
+def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitution, friction, threshold):
     """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j``.
 
     The normal ``n`` points from ``a`` to the point; ``depth`` is the overlap along it.
-    A single body as the second side is ``i == j`` with ``t = 0``.
+    A single body as the second side is ``i == j`` with ``t = 0``. ``start`` holds every
+    body's position at the start of the substep: a resting contact (approaching no faster
+    than ``threshold``) also holds static friction on positions.
     """
     wa = inv_mass[a]
     wi = (1.0 - t) * inv_mass[i]
@@ -79,6 +96,16 @@ def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, f
     ry = (1.0 - t) * v[i, 1] + t * v[j, 1] - v[a, 1]
     rz = (1.0 - t) * v[i, 2] + t * v[j, 2] - v[a, 2]
     closing = rx * nx + ry * ny + rz * nz
+    if -closing <= threshold:
+        # a resting contact: static friction on positions, on the point's slip relative to a
+        sx = (1.0 - t) * (x[i, 0] - start[i, 0]) + t * (x[j, 0] - start[j, 0]) - (x[a, 0] - start[a, 0])
+        sy = (1.0 - t) * (x[i, 1] - start[i, 1]) + t * (x[j, 1] - start[j, 1]) - (x[a, 1] - start[a, 1])
+        sz = (1.0 - t) * (x[i, 2] - start[i, 2]) + t * (x[j, 2] - start[j, 2]) - (x[a, 2] - start[a, 2])
+        sx, sy, sz = _static_slip(sx, sy, sz, nx, ny, nz, friction * depth)
+        add_scaled(x, a, wa / total, sx, sy, sz)
+        add_scaled(x, i, -(wi / total), sx, sy, sz)
+        if j != i:
+            add_scaled(x, j, -(wj / total), sx, sy, sz)
     if closing >= 0.0:
         return
     e = restitution if -closing > threshold else 0.0
@@ -101,11 +128,16 @@ def _pair_response(x, v, inv_mass, a, i, j, t, nx, ny, nz, depth, restitution, f
 
 
 @njit(cache=True)
-def _static_response(x, v, k, nx, ny, nz, depth, restitution, friction, threshold):
+def _static_response(x, v, start, k, nx, ny, nz, depth, restitution, friction, threshold, hold):
     """Resolve a contact of body ``k`` with an immovable obstacle; ``n`` points out of the
-    obstacle towards ``k``."""
+    obstacle towards ``k``. ``hold``: a resting contact holds static friction on positions, as
+    in :func:`_pair_response` (balls; net particles on the ground do not)."""
     add_scaled(x, k, depth, nx, ny, nz)
     closing = v[k, 0] * nx + v[k, 1] * ny + v[k, 2] * nz
+    if hold and -closing <= threshold:  # a resting contact: static friction on positions
+        sx, sy, sz = _static_slip(start[k, 0] - x[k, 0], start[k, 1] - x[k, 1], start[k, 2] - x[k, 2],
+                                  nx, ny, nz, friction * depth)
+        add_scaled(x, k, 1.0, sx, sy, sz)
     if closing >= 0.0:
         return
     e = restitution if -closing > threshold else 0.0
@@ -123,7 +155,7 @@ def _static_response(x, v, k, nx, ny, nz, depth, restitution, friction, threshol
 
 
 @njit(cache=True)
-def _ball_poles(x, v, b, radius, poles, coef, threshold):
+def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
     for p in range(poles.shape[0]):
         ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
         ex, ey, ez = poles[p, 3] - ax, poles[p, 4] - ay, poles[p, 5] - az
@@ -137,12 +169,12 @@ def _ball_poles(x, v, b, radius, poles, coef, threshold):
         if dist2 >= reach * reach:
             continue
         nx, ny, nz = _direction(dx, dy, dz, dist2, ex, ey, ez)
-        _static_response(x, v, b, nx, ny, nz, reach - math.sqrt(dist2),
-                         coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold)
+        _static_response(x, v, start, b, nx, ny, nz, reach - math.sqrt(dist2),
+                         coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold, True)
 
 
 @njit(cache=True)
-def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
+def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold):
     e, mu = coef[Contact.BALL_NET, 0], coef[Contact.BALL_NET, 1]
     r2 = radius * radius
     for k in range(n_net):
@@ -157,7 +189,7 @@ def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
         if dist2 >= r2:
             continue
         nx, ny, nz = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
-        _pair_response(x, v, inv_mass, b, k, k, 0.0, -nx, -ny, -nz, radius - math.sqrt(dist2),
+        _pair_response(x, v, inv_mass, start, b, k, k, 0.0, -nx, -ny, -nz, radius - math.sqrt(dist2),
                        e, mu, threshold)
     for s in range(segments.shape[0]):
         i = segments[s, 0]
@@ -183,12 +215,12 @@ def _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold):
         if dist2 >= r2:
             continue
         nx, ny, nz = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
-        _pair_response(x, v, inv_mass, b, i, j, t, -nx, -ny, -nz, radius - math.sqrt(dist2),
+        _pair_response(x, v, inv_mass, start, b, i, j, t, -nx, -ny, -nz, radius - math.sqrt(dist2),
                        e, mu, threshold)
 
 
 @njit(cache=True)
-def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, threshold, net_box):
+def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef, threshold, net_box):
     """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass).
 
     ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
@@ -196,11 +228,11 @@ def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, thres
     """
     n = x.shape[0]
     for b in range(n_net, n):
-        _ball_poles(x, v, b, radius, poles, coef, threshold)
+        _ball_poles(x, v, start, b, radius, poles, coef, threshold)
         if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
                 and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
                 and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
-            _ball_net(x, v, inv_mass, b, radius, n_net, segments, coef, threshold)
+            _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold)
     reach = 2.0 * radius
     for b in range(n_net, n):
         for c in range(b + 1, n):
@@ -211,13 +243,14 @@ def resolve_contacts(x, v, inv_mass, n_net, radius, segments, poles, coef, thres
             if dist2 >= reach * reach:
                 continue
             nx, ny, nz = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
-            _pair_response(x, v, inv_mass, b, c, c, 0.0, nx, ny, nz, reach - math.sqrt(dist2),
+            _pair_response(x, v, inv_mass, start, b, c, c, 0.0, nx, ny, nz, reach - math.sqrt(dist2),
                            coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
         if x[k, 2] < floor and inv_mass[k] > 0.0:
             pair = Contact.BALL_GROUND if k >= n_net else Contact.NET_GROUND
-            _static_response(x, v, k, 0.0, 0.0, 1.0, floor - x[k, 2], coef[pair, 0], coef[pair, 1], threshold)
+            _static_response(x, v, start, k, 0.0, 0.0, 1.0, floor - x[k, 2], coef[pair, 0], coef[pair, 1], threshold,
+                             k >= n_net)
 
 
 @njit(cache=True)

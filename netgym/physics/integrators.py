@@ -29,7 +29,8 @@ from numba import njit
 from netgym.physics.forces import accelerations, spring_axis, spring_forces
 from netgym.physics.rows import add_pair_force, add_scaled
 
-WORK_SLOTS = 7
+WORK_SLOTS = 8
+START_SLOT = 7   # the one slot the integrators leave alone: positions at the start of a substep
 
 
 class Scratch(NamedTuple):

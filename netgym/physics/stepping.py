@@ -8,7 +8,7 @@ import numpy as np
 from numba import njit, prange
 
 from netgym.physics.contacts import resolve_contacts
-from netgym.physics.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler, step_rk4
+from netgym.physics.integrators import START_SLOT, Scratch, step_euler, step_imex_euler, step_implicit_euler, step_rk4
 from netgym.physics.kinds import Integrator
 
 OK, DIVERGED = 0, 1
@@ -118,8 +118,9 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     springs, params = model.springs, model.spring_params
     integrator, dt = settings.integrator, settings.dt
     work, coef = scratch.work, scratch.coef
+    start = work[START_SLOT]  # every body's position at the start of the substep
+    before = start[n_net:]
     n_balls = x.shape[0] - n_net
-    before = np.empty((n_balls, 3))
     before_v = np.empty((n_balls, 3))
     box = np.empty(6)
     for _ in range(n_steps):
@@ -131,9 +132,11 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
             substeps = max(1, int(math.ceil(closing * dt / (settings.max_travel * radius))))
         h = dt / substeps
         for _sub in range(substeps):
+            for k in range(x.shape[0]):
+                for c in range(3):
+                    start[k, c] = x[k, c]
             for b in range(n_balls):
                 for c in range(3):
-                    before[b, c] = x[n_net + b, c]
                     before_v[b, c] = v[n_net + b, c]
             if integrator == Integrator.EXPLICIT_EULER or integrator == Integrator.SYMPLECTIC_EULER:
                 step_euler(x, v, inv_mass, gravity, drag, springs, params, h, work,
@@ -149,7 +152,7 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
             if n_balls > 0:
                 _exact_ball_flight(x, v, before, before_v, n_net, gravity, h)
                 _net_box(x, n_net, box)
-            resolve_contacts(x, v, inv_mass, n_net, radius, model.segments, model.poles, model.contact,
+            resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.poles, model.contact,
                              model.restitution_threshold, box)
             update_entered(x, before, n_net, entered, model.opening)
             stats[0].substeps += 1
