@@ -24,6 +24,7 @@ from netgym.physics.kinds import Integrator
 INTEGRATORS = Integrator.labels()
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
 BUILTIN_SCENES = ("basket", "goal")
+CAPTURE_RULES = ("held", "line")
 MAX_NET_PARTICLES = 20_000     # beyond this a scene takes minutes to build and settle
 MAX_SPRING_RATE = 2e9          # spring evaluations per simulated second: ~15 s of one core
 SPRINGS_PER_PARTICLE = 6       # structural, shear and bending: at most two of each per particle
@@ -34,9 +35,10 @@ def _num(lo: float, hi: float, *, lo_open: bool = False, hi_open: bool = False) 
     return field(metadata={"range": (lo, hi, lo_open, hi_open)})
 
 
-def _choice(*options: str) -> Any:
-    """A dataclass field whose value must be one of ``options``."""
-    return field(metadata={"choices": options})
+def _choice(*options: str, default: Any = dataclasses.MISSING) -> Any:
+    """A dataclass field whose value must be one of ``options`` (optional in scene files when
+    it has a ``default``)."""
+    return field(default=default, metadata={"choices": options})
 
 
 @dataclass(frozen=True)
@@ -146,7 +148,13 @@ class ThrowConfig:
 
 @dataclass(frozen=True)
 class SceneConfig:
-    """A whole scene: the net, its springs, the ball, contacts, simulation and throws."""
+    """A whole scene: the net, its springs, the ball, contacts, simulation and throws.
+
+    ``capture_rule`` says when a throw counts as caught: ``"held"``, the ball came in through
+    the opening and is inside the net when it comes to rest or the time limit ends; ``"line"``
+    (the sport's rule), the whole ball has crossed the opening's plane inside the frame,
+    decided that instant.
+    """
 
     name: str
     net: NetConfig
@@ -155,6 +163,7 @@ class SceneConfig:
     contact: ContactConfig
     simulation: SimulationConfig
     throw: ThrowConfig
+    capture_rule: str = _choice(*CAPTURE_RULES, default="held")
 
     def replace(self, overrides: Mapping[str, Any]) -> "SceneConfig":
         """Return a validated copy with dotted fields replaced, e.g. ``{"simulation.dt": 5e-4}``."""
@@ -226,11 +235,12 @@ def _build(cls: type, table: Mapping[str, Any], path: str) -> Any:
     unknown = sorted(set(table) - set(names))
     if unknown:
         raise ConfigError(f"unknown field {prefix}{unknown[0]}; allowed fields: {names}")
-    missing = [n for n in names if n not in table]
+    missing = [f.name for f in dataclasses.fields(cls)
+               if f.name not in table and f.default is dataclasses.MISSING]
     if missing:
         raise ConfigError(f"missing field {prefix}{missing[0]}")
     values = {f.name: _convert(table[f.name], hints[f.name], prefix + f.name, f)
-              for f in dataclasses.fields(cls)}
+              for f in dataclasses.fields(cls) if f.name in table}
     return cls(**values)
 
 

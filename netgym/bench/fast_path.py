@@ -24,9 +24,9 @@ class Outcome:
     touched: bool  # the fast path had to integrate (the ball came near the net or poles)
 
 
-def _simulate(args: tuple[str, list[Throw]]) -> list[Outcome]:
-    scene, throws = args
-    sim = Simulator(scene)
+def _simulate(args: tuple[str, dict | None, list[Throw]]) -> list[Outcome]:
+    scene, overrides, throws = args
+    sim = Simulator(scene, overrides)
     out = []
     for position, velocity in throws:
         sim.reset()
@@ -40,12 +40,13 @@ def _simulate(args: tuple[str, list[Throw]]) -> list[Outcome]:
     return out
 
 
-def compare(scene: str, throws: list[Throw], workers: int = 1) -> list[Outcome]:
-    """Simulate every throw fast and fully, on ``workers`` processes (forked after compiling)."""
-    Simulator(scene).throw(*throws[0])  # compile and settle before forking
+def compare(scene: str, throws: list[Throw], workers: int = 1, overrides: dict | None = None) -> list[Outcome]:
+    """Simulate every throw fast and fully, on ``workers`` processes (forked after compiling),
+    in the scene with ``overrides`` (e.g. ``{"capture_rule": "held"}``)."""
+    Simulator(scene, overrides).throw(*throws[0])  # compile and settle before forking
     if workers == 1:
-        return _simulate((scene, throws))
-    chunks = [(scene, throws[i::workers]) for i in range(workers)]
+        return _simulate((scene, overrides, throws))
+    chunks = [(scene, overrides, throws[i::workers]) for i in range(workers)]
     with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
         parts = list(pool.map(_simulate, chunks))
     return [o for part in parts for o in part]

@@ -27,7 +27,7 @@ def ballistic_oracle(scene: str) -> BallisticOracle:
 def sample_throws(scene: str, count: int, seed: int = 0) -> list[Throw]:
     """``count`` (launch position, velocity) pairs, half random, half noisy oracle throws."""
     sim = Simulator(scene)
-    opening = sim.model.geometry.opening
+    opening = sim.opening
     oracle = ballistic_oracle(scene)
     centre_z = float(opening.centre[2])
     rng = np.random.default_rng(seed)

@@ -87,9 +87,11 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     ## Info
 
-    ``captured`` (bool), ``reason`` (how the outcome was decided), ``final_position`` of the
-    ball, ``sim_time`` (simulated seconds of the throw), ``substeps`` (integration substeps),
-    ``launch_position`` and ``launch_velocity``.
+    ``captured`` (bool, by the scene's ``capture_rule``), ``reason`` (how the outcome was
+    decided), ``final_position`` of the ball, ``sim_time`` (simulated seconds of the throw),
+    ``substeps`` (every integration substep the step took), split into ``throw_substeps`` and
+    ``settle_substeps`` (bringing the net to rest after the previous throw, ``settle_time``
+    simulated seconds), ``launch_position`` and ``launch_velocity``.
 
     ## Arguments
 
@@ -103,6 +105,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"`` |
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
+    | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit) or ``"line"`` (goal: the whole ball crossed the mouth) |
     """
 
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
@@ -110,7 +113,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     def __init__(self, scene: str | Path | SceneConfig = "basket", integrator: str | None = None,
                  dt: float | None = None, balls_per_episode: int = 3, reward_mode: str = "sparse",
                  render_mode: str | None = None, fast: bool = True,
-                 overrides: dict[str, Any] | None = None) -> None:
+                 overrides: dict[str, Any] | None = None, capture_rule: str | None = None) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
@@ -125,6 +128,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             changes["simulation.integrator"] = integrator
         if dt is not None:
             changes["simulation.dt"] = dt
+        if capture_rule is not None:
+            changes["capture_rule"] = capture_rule
         self.sim = Simulator(config.replace(changes) if changes else config)
         self.scene = self.sim.config
         self.balls_per_episode = int(balls_per_episode)
@@ -229,7 +234,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
         info = {"captured": result.captured, "reason": result.reason,
                 "final_position": result.final_position, "sim_time": result.time,
-                "substeps": result.substeps, "launch_position": launch, "launch_velocity": velocity}
+                "substeps": result.settle_substeps + result.substeps, "throw_substeps": result.substeps,
+                "settle_substeps": result.settle_substeps, "settle_time": result.settle_time,
+                "launch_position": launch, "launch_velocity": velocity}
         if self.render_mode == "human":
             self._renderer_show()
         return self._observation(), reward, terminated, False, info

@@ -60,6 +60,10 @@ class Opening:
         """True for a horizontal opening (entered from above), False for a vertical mouth."""
         return self.axis == 2
 
+    def depth(self, point: np.ndarray) -> float:
+        """How far ``point`` lies past the opening's plane on the inner side (negative outside)."""
+        return float(-self.sign * (point[self.axis] - self.plane))
+
     def contains(self, point: np.ndarray) -> bool:
         """True if ``point`` is on the inner side of the opening's plane and within the
         rectangle's extent: inside the box the opening closes."""

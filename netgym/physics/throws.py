@@ -10,6 +10,7 @@ integrates everything from launch to the time limit instead, as a reference.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -36,13 +37,18 @@ SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this ma
 class ThrowResult:
     """Outcome of one throw.
 
-    :param captured: the ball came in through the opening and is inside the net.
+    :param captured: caught by the scene's ``capture_rule``: ``"held"``, the ball came in through
+        the opening and is inside the net; ``"line"``, the whole ball crossed the opening's plane
+        inside the frame.
     :param entered: the ball's centre crossed the opening inwards (and did not leave through it).
     :param final_position: ball centre when the outcome was decided (m).
     :param final_velocity: ball velocity then (m/s).
     :param time: simulated seconds from launch to the decision.
-    :param substeps: integration substeps spent (0 when decided in closed form).
-    :param reason: ``"flies_away"``, ``"cannot_reach_opening"``, ``"at_rest"`` or ``"time_limit"``.
+    :param substeps: integration substeps spent on the throw (0 when decided in closed form).
+    :param reason: ``"flies_away"``, ``"cannot_reach_opening"``, ``"at_rest"``, ``"crossed_line"``
+        or ``"time_limit"``.
+    :param settle_substeps: integration substeps spent bringing the net to rest before the launch.
+    :param settle_time: simulated seconds of that settling.
     """
 
     captured: bool
@@ -52,6 +58,8 @@ class ThrowResult:
     time: float
     substeps: int
     reason: str
+    settle_substeps: int = 0
+    settle_time: float = 0.0
 
 
 class Throw:
@@ -81,8 +89,10 @@ class Throw:
         """The throw as a plan; it returns the :class:`ThrowResult`. The net is first brought to
         rest if it still moves. A captured ball stays in the scene; a missed one is removed."""
         sim = self.sim
+        substeps, time = sim.substeps, sim.state.time
         if sim.awake:
             yield from sim.relax_plan()
+        settled = {"settle_substeps": sim.substeps - substeps, "settle_time": sim.state.time - time}
         start = sim.state.copy()
         ball = sim.launch_ball(self.position, self.velocity)
         try:
@@ -92,7 +102,9 @@ class Throw:
             raise
         if not result.captured:
             sim.remove_ball(ball)
-        return result
+        elif result.reason == "crossed_line":
+            sim.awake = True  # the ball is still on its way into the net: settle it before the next throw
+        return dataclasses.replace(result, **settled)
 
     def _clearance(self, row: int) -> float:
         """Distance the ball in ``row`` can travel before it could touch the net, a pole or
@@ -120,16 +132,23 @@ class Throw:
         chunk = max(1, round(min(CHUNK_SECONDS, self.frame_dt or math.inf) / cfg.dt))
         reference_energy = self._potential_without(row, sim.energy())
         rest_since: float | None = None
+        line = sim.config.capture_rule == "line"
+        crossed = False
         while True:
             if fast and not sim.awake:
-                reason = yield from self._fly(row, deadline)
+                reason = yield from self._fly(row, ball, deadline)
                 if reason is not None:
+                    crossed = reason == "crossed_line"
                     break
                 sim.awake = True
                 if self._clearance(row) < 0.0:
                     continue  # launched overlapping something: let the contacts act before deciding
             elif round((deadline - s.time) / cfg.dt) > 0:
                 yield Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
+            crossed = crossed or (line and self._crossed_line(row, ball))
+            if fast and crossed:
+                reason = "crossed_line"
+                break
             if deadline - s.time < 0.5 * cfg.dt:
                 reason = "time_limit"
                 break
@@ -143,11 +162,17 @@ class Throw:
             if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
                 sim.sleep(keep=row)
         entered = bool(s.entered[ball])
-        return ThrowResult(captured=entered and sim.opening.contains(s.x[row]), entered=entered,
+        captured = crossed if line else entered and sim.opening.contains(s.x[row])
+        return ThrowResult(captured=captured, entered=entered,
                            final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
                            time=s.time - t0, substeps=sim.substeps - substeps0, reason=reason)
 
-    def _fly(self, row: int, deadline: float) -> Plan:
+    def _crossed_line(self, row: int, ball: int) -> bool:
+        """The whole ball is past the opening's plane, having come in through the opening."""
+        sim = self.sim
+        return bool(sim.state.entered[ball]) and sim.opening.depth(sim.state.x[row]) >= sim.model.ball_radius
+
+    def _fly(self, row: int, ball: int, deadline: float) -> Plan:
         """Move the ball in closed form while it is clear of everything. Returns a decision
         reason, or None when the ball came close enough to need simulating."""
         sim = self.sim
@@ -166,6 +191,8 @@ class Throw:
             s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, self.ground)
             stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
             s.time += tau
+            if sim.config.capture_rule == "line" and self._crossed_line(row, ball):
+                return "crossed_line"
             if self.frame_dt is not None:
                 yield Tick()
             if deadline - s.time < 0.5 * sim.dt:
