@@ -52,7 +52,7 @@ def test_a_line_capture_settles_before_the_next_throw() -> None:
 
 @pytest.mark.parametrize("rule", ["line", "held"])
 def test_goal_fast_path_agrees_with_full_simulation(rule: str) -> None:
-    throws = sample_throws("goal", 120, seed=5)
+    throws = sample_throws("goal", 60, seed=5)
     summary = summarise(compare("goal", throws, workers=2, overrides={"capture_rule": rule}))
     assert 0.2 < summary["captured"] < 0.9
     assert summary["agreement"] >= 0.99

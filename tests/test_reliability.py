@@ -160,3 +160,23 @@ def test_scenes_that_would_run_for_hours_are_refused_at_once(overrides: dict, me
         load_scene("basket", overrides)
     with pytest.raises(ConfigError, match=message):
         NetCatchEnv(overrides=overrides)
+
+
+def test_long_settling_shows_progress_and_short_work_stays_quiet() -> None:
+    import io
+
+    from netgym.physics.progress import Progress
+
+    sim = Simulator("basket")
+    quiet, loud = io.StringIO(), io.StringIO()
+    sim.launch_ball([0.0, 0.0, 2.0], [0.0, 0.0, 0.0])
+    short = Progress("settling", 60.0, stream=quiet)
+    sim.run(sim.relax_plan(), short)
+    short.close()
+    sim.launch_ball([0.2, 0.0, 2.0], [0.0, 0.0, 0.0])
+    long = Progress("settling", 60.0, quiet=0.0, every=0.0, stream=loud)
+    sim.run(sim.relax_plan(), long)
+    long.close()
+    assert quiet.getvalue() == ""
+    text = loud.getvalue()
+    assert "settling: " in text and "of at most 60 s simulated" in text and text.endswith("\n")

@@ -22,6 +22,7 @@ from netgym.physics.kinds import Integrator
 from netgym.physics.model import KernelModel, Model, Settings, State
 from netgym.physics.opening import Opening
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, drive
+from netgym.physics.progress import Progress
 from netgym.physics.stability import NetModes, net_modes, stable_dt
 from netgym.physics.stepping import new_counters
 from netgym.physics.throws import Throw, ThrowResult, vector_argument
@@ -30,6 +31,7 @@ RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxatio
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
 RELAX_DISPLACEMENT = 1e-3     # m ... by more than this (1 cm/s: slow creep of balls on a sloped net is at rest)
 MAX_LAUNCH_SPEED = 100.0      # m/s
+SETTLE_TIME = 60.0            # s: the most simulated time the settling of a new net may take
 
 
 @dataclass(frozen=True)
@@ -291,13 +293,16 @@ class Simulator:
         """The net at rest under gravity (cached per scene config)."""
         key = self.config
         if key not in _SETTLED:
+            progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
             try:
-                self.relax()
+                self.run(self.relax_plan(SETTLE_TIME), progress)
             except SimulationDivergedError:
                 # an unstable dt (allowed with check_stability=False) cannot hold the net still:
                 # start it from the equilibrium found with implicit Euler instead
                 self.state = State.at_rest(self.model)
-                self.run(self.relax_plan(60.0, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT))
+                self.run(self.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT), progress)
+            finally:
+                progress.close()
             _SETTLED[key] = self.state.x.copy()
         return _SETTLED[key]
 
