@@ -26,6 +26,15 @@ def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
         assert substeps_per_s > 0
 
 
+def test_bench_episodes_quick_books_the_settling() -> None:
+    out = _run("scripts/bench_episodes.py", "--quick")
+    rows = [line.split("|") for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
+    assert len(rows) == 5
+    oracle_basket = rows[0]
+    assert oracle_basket[2].strip() == "oracle" and oracle_basket[5].strip() == "100.0%"
+    assert float(oracle_basket[6]) > 0 and oracle_basket[8].split("/")[2].strip() != "0"  # pauses happened
+
+
 def test_python_m_netgym_reports_a_throw() -> None:
     out = _run("-m", "netgym")
     assert "CAPTURED" in out and "substeps" in out

@@ -8,7 +8,7 @@ import math
 import platform
 from dataclasses import dataclass
 
-from netgym.bench import sim_throughput
+from netgym.bench import episodes, sim_throughput
 from netgym.bench.env_throughput import sb3_throughput, vector_scaling
 from netgym.bench.fast_path import compare, summarise
 from netgym.bench.outcomes import outcome_accuracy
@@ -32,6 +32,7 @@ class Report:
     fast_path: dict[str, dict[str, float]]  # scene -> fast_path.summarise figures
     vector_scaling: dict[int, float]        # numba threads -> throws/s
     sb3: dict[str, float]                   # "native" / "subproc" -> env steps/s
+    episodes: str                           # episodes.to_markdown's table
 
 
 def measure(quick: bool, count: int) -> Report:
@@ -46,7 +47,10 @@ def measure(quick: bool, count: int) -> Report:
                  for scene in ("basket", "goal")}
     scaling = vector_scaling("basket", 8, 2 if quick else 30)
     sb3 = {kind: sb3_throughput(kind, 8, 2 if quick else 30) for kind in ("native", "subproc")}
-    return Report(count, wp, outcome_rows, stability, peer_rows, sim_table, summaries, scaling, sb3)
+    episode_rows = [episodes.run_episodes(scene, policy, 2 if quick else 60, 3)
+                    for scene, policy in (("basket", "oracle"), ("basket", "random"), ("goal", "oracle"))]
+    return Report(count, wp, outcome_rows, stability, peer_rows, sim_table, summaries, scaling, sb3,
+                  episodes.to_markdown(episode_rows))
 
 
 def _env_table(report: Report) -> str:
@@ -178,4 +182,10 @@ def to_markdown(report: Report) -> str:
     for r in peer_rows:
         out.append(f"| {r['system']} | {r['steps_per_s']:,.0f} | {r['error']:.2e} | {ours / r['steps_per_s']:.1f}x |")
     out += ["", "## 6. What the optimisations bought (ratios of the figures above)", "", *gains]
+    out += ["", "## 7. Episodes", "", EPISODES_TEXT, "", report.episodes]
     return "\n".join(out) + "\n"
+
+
+EPISODES_TEXT = ("What training pays: whole 3-ball episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py` "
+                 "has more rows). With the oracle every ball is caught, so before each throw the loaded net must "
+                 "settle; `info['settle_substeps']` books that pause and `info['substeps']` all the work of a step.")

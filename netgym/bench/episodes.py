@@ -1,0 +1,67 @@
+"""Whole episodes, as a user trains on them: the step times and throws per second of NetCatch-v0
+with the ballistic oracle (every ball caught, so the net fills and must settle between throws)
+and with random actions, the settling pauses booked in ``info``."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from netgym.bench.throws import ballistic_oracle
+from netgym.envs import NetCatchEnv
+
+
+@dataclass(frozen=True)
+class EpisodeFigures:
+    """Figures of ``throws`` steps of one policy on one scene."""
+
+    scene: str
+    policy: str
+    balls: int
+    throws: int
+    capture_rate: float
+    throws_per_s: float
+    step_ms: tuple[float, float, float]           # p50, p99, max
+    settle_substeps: tuple[float, float, float]   # p50, p90, max
+    settle_share: float                           # settling substeps / all substeps
+
+
+def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int = 0) -> EpisodeFigures:
+    """Time every step of ``episodes`` seeded episodes of ``balls`` throws (``policy``: ``"oracle"``
+    or ``"random"``), after one warm-up episode that compiles the kernels."""
+    env = NetCatchEnv(scene=scene, balls_per_episode=balls)
+    oracle = ballistic_oracle(scene)
+    rng = np.random.default_rng(seed)
+    steps, settle, total, caught = [], [], [], 0.0
+    for episode in range(-1, episodes):
+        obs, _ = env.reset(seed=seed + episode + 1)
+        done = False
+        while not done:
+            action = oracle.predict(obs)[0] if policy == "oracle" else rng.uniform(-1, 1, 3).astype(np.float32)
+            start = time.perf_counter()
+            obs, reward, done, _, info = env.step(action)
+            if episode >= 0:
+                steps.append(time.perf_counter() - start)
+                settle.append(info["settle_substeps"])
+                total.append(info["substeps"])
+                caught += float(info["captured"])
+    ms = 1e3 * np.array(steps)
+    return EpisodeFigures(scene, policy, balls, len(steps), caught / len(steps), len(steps) / float(np.sum(steps)),
+                          (float(np.median(ms)), float(np.percentile(ms, 99)), float(ms.max())),
+                          (float(np.median(settle)), float(np.percentile(settle, 90)), float(max(settle))),
+                          float(np.sum(settle)) / max(float(np.sum(total)), 1.0))
+
+
+def to_markdown(rows: list[EpisodeFigures]) -> str:
+    """The episodes table."""
+    lines = ["| scene | policy | balls per episode | throws | caught | throws/s | step p50 / p99 / max (ms) | "
+             "settle substeps p50 / p90 / max | settling share of substeps |",
+             "|---|---|---:|---:|---:|---:|---|---|---:|"]
+    for r in rows:
+        lines.append(f"| {r.scene} | {r.policy} | {r.balls} | {r.throws} | {100 * r.capture_rate:.1f}% | "
+                     f"{r.throws_per_s:.1f} | {r.step_ms[0]:.1f} / {r.step_ms[1]:.1f} / {r.step_ms[2]:.1f} | "
+                     f"{r.settle_substeps[0]:.0f} / {r.settle_substeps[1]:.0f} / {r.settle_substeps[2]:.0f} | "
+                     f"{100 * r.settle_share:.0f}% |")
+    return "\n".join(lines)

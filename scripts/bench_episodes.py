@@ -1,0 +1,36 @@
+"""Whole episodes, what training pays: NetCatch-v0 step times (p50, p99, max) and throws per
+second with the ballistic oracle (every ball caught: the net fills and settles between throws)
+and with random actions, on one process, with the settling pauses booked in ``info``.
+
+Usage::
+
+    python scripts/bench_episodes.py               # 60 episodes per row
+    python scripts/bench_episodes.py --quick       # 2 episodes per row, for CI smoke tests
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from netgym.bench.episodes import run_episodes, to_markdown
+
+ROWS = (("basket", "oracle", 3), ("basket", "random", 3), ("basket", "oracle", 10), ("goal", "oracle", 3),
+        ("goal", "random", 3))
+
+
+def main() -> None:
+    """Parse arguments, run every row, print a markdown table."""
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="2 episodes per row, for smoke tests")
+    parser.add_argument("--episodes", type=int, default=60)
+    args = parser.parse_args()
+    episodes = 2 if args.quick else args.episodes
+    rows = []
+    for k, (scene, policy, balls) in enumerate(ROWS):
+        print(f"[{k + 1}/{len(ROWS)}] {scene}, {policy}, {balls}-ball episodes ...", flush=True)
+        rows.append(run_episodes(scene, policy, max(1, episodes * 3 // balls), balls))
+    print(to_markdown(rows))
+
+
+if __name__ == "__main__":
+    main()
