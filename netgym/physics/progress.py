@@ -22,14 +22,15 @@ class Progress:
                  stream: TextIO | None = None) -> None:
         self.what, self.bound, self.quiet, self.every = what, bound, quiet, every
         self.stream = sys.stderr if stream is None else stream
-        self.started = time.perf_counter()
+        self.started = time.perf_counter()  # restarted at the first observation
         self.shown_at: float | None = None
         self.sim_start: float | None = None
 
     def __call__(self, sim: Any) -> None:
         now = time.perf_counter()
-        if self.sim_start is None:
-            self.sim_start = sim.state.time
+        if self.sim_start is None:  # the first request is done: the kernels are compiled, time from here
+            self.sim_start, self.started = sim.state.time, now
+            return
         if now - self.started < self.quiet or (self.shown_at is not None and now - self.shown_at < self.every):
             return
         self.shown_at = now
