@@ -170,3 +170,18 @@ def test_works_in_stable_baselines3_subprocess_vec_env() -> None:
         assert obs.shape == (2, 7) and rewards.shape == (2,) and "captured" in infos[0]
     finally:
         vec.close()
+
+
+@pytest.mark.parametrize(("env_id", "scene", "balls", "threshold"), [
+    ("NetCatch-v0", "basket", 3, 2.9), ("NetCatchGoal-v0", "goal", 3, 2.9),
+    ("NetCatchLongEpisode-v0", "basket", 10, 9.7)])
+def test_registered_variants_make_pass_the_checker_and_state_their_threshold(env_id: str, scene: str, balls: int,
+                                                                             threshold: float) -> None:
+    env = gym.make(env_id)
+    assert env.spec.reward_threshold == threshold
+    assert env.unwrapped.scene.name == scene and env.unwrapped.balls_per_episode == balls
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        gym_check_env(env.unwrapped)
+    vec = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point")
+    assert vec.unwrapped.envs[0].scene.name == scene

@@ -106,6 +106,19 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
     | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit) or ``"line"`` (goal: the whole ball crossed the mouth) |
+
+    ## Registered ids
+
+    ``NetCatch-v0`` (these defaults), ``NetCatchGoal-v0`` (``scene="goal"``) and
+    ``NetCatchLongEpisode-v0`` (``balls_per_episode=10``); see :mod:`netgym`.
+
+    ## Version History
+
+    - v0 (netgym 0.1, not yet released; changes made within v0 before the first release):
+      the default integrator became IMEX Euler at 2 ms (was symplectic Euler at 0.5 ms; the
+      shipped PPO model was trained on the old default and scores the same on the new one);
+      resting contacts hold static friction (balls no longer creep on the settled net); the
+      goal scene counts a goal by the ``line`` rule; ``info`` books the settling pause.
     """
 
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
