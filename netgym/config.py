@@ -16,8 +16,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, Mapping
 
-import numpy as np
-
+from netgym.arguments import is_integer, is_real
 from netgym.errors import ConfigError
 from netgym.physics.kinds import Integrator
 
@@ -205,9 +204,9 @@ def _scalar(value: Any, kind: type, name: str, f: dataclasses.Field) -> Any:
         if choices and value not in choices:
             raise ConfigError(f"{name} = {value!r} is not allowed; choose one of {list(choices)}")
         return value
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+    if not is_real(value):
         raise ConfigError(f"{name} must be a number, got {value!r}")
-    if kind is int and not isinstance(value, (int, np.integer)):
+    if kind is int and not is_integer(value):
         raise ConfigError(f"{name} must be an integer, got {value!r}")
     spec = f.metadata.get("range")
     if spec and not _in_range(float(value), spec):

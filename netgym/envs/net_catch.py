@@ -11,6 +11,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from netgym.arguments import is_integer
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError
 from netgym.launch import Thrower, action_to_velocity, opening_miss_distance, sample_thrower
@@ -131,7 +132,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
             raise ValueError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
-        if not _is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
+        if not is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
             raise ValueError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
         if not isinstance(fast, (bool, np.bool_)):
             raise ValueError(f"fast = {fast!r}; allowed: True or False")
@@ -300,8 +301,3 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         state = self.__dict__.copy()
         state["_renderer"] = None  # windows and fonts do not travel; a new one opens on demand
         return state
-
-
-def _is_integer(value: Any) -> bool:
-    """True for an int (Python or NumPy) that is not a bool."""
-    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))

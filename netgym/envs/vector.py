@@ -13,6 +13,7 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from netgym.arguments import integer_argument
 from netgym.envs.net_catch import NetCatchEnv
 from netgym.errors import NetgymError
 from netgym.physics.integration import Workspace
@@ -34,11 +35,9 @@ class NetCatchVectorEnv(VectorEnv):
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": []}
 
     def __init__(self, num_envs: int = 1, max_episode_steps: int | None = None, **kwargs: Any) -> None:
-        if not isinstance(num_envs, int) or isinstance(num_envs, bool) or num_envs < 1:
-            raise ValueError(f"num_envs = {num_envs!r}; allowed: an integer >= 1")
-        if max_episode_steps is not None and (not isinstance(max_episode_steps, int)
-                                              or isinstance(max_episode_steps, bool) or max_episode_steps < 1):
-            raise ValueError(f"max_episode_steps = {max_episode_steps!r}; allowed: None or an integer >= 1")
+        num_envs = integer_argument(num_envs, "num_envs", 1)
+        if max_episode_steps is not None:
+            max_episode_steps = integer_argument(max_episode_steps, "max_episode_steps", 1)
         if kwargs.get("render_mode") is not None:
             raise ValueError("NetCatchVectorEnv does not render; use NetCatchEnv for render_mode")
         kwargs.pop("render_mode", None)

@@ -14,6 +14,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import SimulationDivergedError, UnstableTimeStepError
 from netgym.physics.forces import energies
@@ -25,7 +26,7 @@ from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, drive
 from netgym.physics.progress import Progress
 from netgym.physics.stability import NetModes, net_modes, stable_dt
 from netgym.physics.stepping import new_counters
-from netgym.physics.throws import Throw, ThrowResult, vector_argument
+from netgym.physics.throws import Throw, ThrowResult
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
@@ -210,14 +211,12 @@ class Simulator:
     def step(self, n_steps: int = 1, integrator: str | None = None, dt: float | None = None) -> None:
         """Integrate everything for ``n_steps`` steps (no shortcuts), with the scene's
         integrator and ``dt`` unless others are given (for convergence and stability studies)."""
-        if not isinstance(n_steps, (int, np.integer)) or isinstance(n_steps, (bool, np.bool_)) or n_steps < 0:
-            raise ValueError(f"n_steps = {n_steps!r}; allowed: an integer >= 0")
+        n_steps = integer_argument(n_steps, "n_steps", 0)
         dt = self.dt if dt is None else dt
-        if isinstance(dt, (bool, np.bool_)) or not isinstance(dt, (int, float, np.floating, np.integer)) \
-                or not (math.isfinite(dt) and dt > 0.0):
+        if not (is_real(dt) and math.isfinite(dt) and dt > 0.0):
             raise ValueError(f"dt = {dt!r}; allowed: a finite number of seconds > 0")
         code = self.integrator if integrator is None else Integrator.parse(integrator)
-        self.run(_request(Integrate(int(n_steps), code, float(dt))))
+        self.run(_request(Integrate(n_steps, code, float(dt))))
         self.awake = True
 
     def relax(self, max_time: float = 60.0) -> None:

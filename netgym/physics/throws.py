@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
 from netgym.physics import contacts, flight, stepping
 from netgym.physics.kinds import Contact
@@ -221,13 +222,3 @@ class Throw:
         if reach < sim.opening.lowest_z:
             return "cannot_reach_opening"
         return None
-
-
-def vector_argument(value: Any, name: str) -> np.ndarray:
-    """``value`` as a finite float64 3-vector, or a ValueError naming ``name``."""
-    arr = np.asarray(value, dtype=np.float64)
-    if arr.shape != (3,):
-        raise ValueError(f"{name} must have shape (3,), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
-    return arr

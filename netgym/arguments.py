@@ -1,0 +1,35 @@
+"""Checks of the arguments users pass, shared by the simulator, the environments and the config:
+each failure is a ValueError that names the argument."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+
+def is_integer(value: Any) -> bool:
+    """True for a Python or NumPy integer that is not a bool."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
+
+
+def is_real(value: Any) -> bool:
+    """True for a Python or NumPy integer or float that is not a bool."""
+    return is_integer(value) or isinstance(value, (float, np.floating))
+
+
+def integer_argument(value: Any, name: str, minimum: int) -> int:
+    """``value`` as an int, or a ValueError naming ``name`` unless it is an integer >= ``minimum``."""
+    if not is_integer(value) or value < minimum:
+        raise ValueError(f"{name} = {value!r}; allowed: an integer >= {minimum}")
+    return int(value)
+
+
+def vector_argument(value: Any, name: str) -> np.ndarray:
+    """``value`` as a finite float64 3-vector, or a ValueError naming ``name``."""
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.shape != (3,):
+        raise ValueError(f"{name} must have shape (3,), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+    return arr
