@@ -74,3 +74,32 @@ def test_sb3_adapter_steps_and_reports_terminal_observations() -> None:
         assert "episode" in info and "captured" in info
     assert env.get_attr("balls_per_episode") == [1, 1]
     env.close()
+
+
+def test_next_step_autoreset_matches_gymnasium_sync_vector_env_and_its_wrappers() -> None:
+    import gymnasium as gym
+    from gymnasium.vector import AutoresetMode, SyncVectorEnv
+    from gymnasium.wrappers.vector import NormalizeObservation
+
+    native = NetCatchVectorEnv(num_envs=2, balls_per_episode=2, autoreset_mode="next_step")
+    assert native.metadata["autoreset_mode"] == AutoresetMode.NEXT_STEP
+    sync = SyncVectorEnv([lambda: NetCatchEnv(balls_per_episode=2) for _ in range(2)],
+                         autoreset_mode=AutoresetMode.NEXT_STEP)
+    a, _ = native.reset(seed=4)
+    b, _ = sync.reset(seed=4)
+    assert np.array_equal(a, b)
+    rng = np.random.default_rng(0)
+    ended = 0
+    for _ in range(5):  # crosses two episode ends and the resets that follow them
+        actions = rng.uniform(-1, 1, (2, 3)).astype(np.float32)
+        a_out, b_out = native.step(actions), sync.step(actions)
+        for x, y in zip(a_out[:4], b_out[:4]):
+            assert np.array_equal(x, y)
+        ended += int(a_out[2].sum())
+    assert ended >= 2
+    wrapped = NormalizeObservation(NetCatchVectorEnv(num_envs=2, autoreset_mode=AutoresetMode.NEXT_STEP))
+    wrapped.reset(seed=0)
+    wrapped.step(np.zeros((2, 3), dtype=np.float32))
+    with pytest.raises(ValueError, match="autoreset_mode = 'sometimes'"):
+        NetCatchVectorEnv(num_envs=1, autoreset_mode="sometimes")
+    gym.make_vec("NetCatch-v0", num_envs=2, vectorization_mode="vector_entry_point", autoreset_mode="next_step").close()
