@@ -34,14 +34,15 @@ COINCIDENT = 1e-24   # m^2: squared distances below this leave no direction betw
 
 @njit(cache=True)
 def _direction(dx, dy, dz, dist2, ex, ey, ez):
-    """Unit vector along (dx, dy, dz), whose squared length is ``dist2``. When the two centres
-    coincide, a defined direction instead: perpendicular to the feature's axis (ex, ey, ez)
-    (zero for a point) along the coordinate axis least aligned with it, or +z for a point."""
+    """(unit vector along (dx, dy, dz), its length), the squared length being ``dist2``. When the
+    two centres coincide, a defined direction instead: perpendicular to the feature's axis
+    (ex, ey, ez) (zero for a point) along the coordinate axis least aligned with it, or +z for a
+    point."""
+    dist = math.sqrt(dist2)
     if dist2 >= COINCIDENT:
-        dist = math.sqrt(dist2)
-        return dx / dist, dy / dist, dz / dist
+        return dx / dist, dy / dist, dz / dist, dist
     if ex == 0.0 and ey == 0.0 and ez == 0.0:
-        return 0.0, 0.0, 1.0
+        return 0.0, 0.0, 1.0, dist
     ax, ay, az = abs(ex), abs(ey), abs(ez)
     px, py, pz = 0.0, 0.0, 0.0
     if az <= ax and az <= ay:
@@ -54,7 +55,7 @@ def _direction(dx, dy, dz, dist2, ex, ey, ez):
     along = (px * ex + py * ey + pz * ez) / len2
     nx, ny, nz = px - along * ex, py - along * ey, pz - along * ez
     norm = math.sqrt(nx * nx + ny * ny + nz * nz)
-    return nx / norm, ny / norm, nz / norm
+    return nx / norm, ny / norm, nz / norm, dist
 
 
 @njit(cache=True)
@@ -168,8 +169,8 @@ def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
         dist2 = dx * dx + dy * dy + dz * dz
         if dist2 >= reach * reach:
             continue
-        nx, ny, nz = _direction(dx, dy, dz, dist2, ex, ey, ez)
-        _static_response(x, v, start, b, nx, ny, nz, reach - math.sqrt(dist2),
+        nx, ny, nz, dist = _direction(dx, dy, dz, dist2, ex, ey, ez)
+        _static_response(x, v, start, b, nx, ny, nz, reach - dist,
                          coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold, True)
 
 
@@ -188,8 +189,8 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold
         dist2 = dx * dx + dy * dy + dz * dz
         if dist2 >= r2:
             continue
-        nx, ny, nz = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
-        _pair_response(x, v, inv_mass, start, b, k, k, 0.0, -nx, -ny, -nz, radius - math.sqrt(dist2),
+        nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
+        _pair_response(x, v, inv_mass, start, b, k, k, 0.0, -nx, -ny, -nz, radius - dist,
                        e, mu, threshold)
     for s in range(segments.shape[0]):
         i = segments[s, 0]
@@ -214,8 +215,8 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold
         dist2 = dx * dx + dy * dy + dz * dz
         if dist2 >= r2:
             continue
-        nx, ny, nz = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
-        _pair_response(x, v, inv_mass, start, b, i, j, t, -nx, -ny, -nz, radius - math.sqrt(dist2),
+        nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
+        _pair_response(x, v, inv_mass, start, b, i, j, t, -nx, -ny, -nz, radius - dist,
                        e, mu, threshold)
 
 
@@ -242,8 +243,8 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef
             dist2 = dx * dx + dy * dy + dz * dz
             if dist2 >= reach * reach:
                 continue
-            nx, ny, nz = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
-            _pair_response(x, v, inv_mass, start, b, c, c, 0.0, nx, ny, nz, reach - math.sqrt(dist2),
+            nx, ny, nz, dist = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
+            _pair_response(x, v, inv_mass, start, b, c, c, 0.0, nx, ny, nz, reach - dist,
                            coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
