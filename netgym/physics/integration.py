@@ -15,7 +15,7 @@ import numpy as np
 
 from netgym.errors import SimulationDivergedError
 from netgym.physics import stepping
-from netgym.physics.integrators import WORK_SLOTS, Scratch
+from netgym.physics.integrators import Scratch
 from netgym.physics.kinds import Integrator
 from netgym.physics.model import KernelModel, Settings, State
 
@@ -45,7 +45,8 @@ class Workspace:
 
     def scratch(self, n_bodies: int, n_springs: int) -> Scratch:
         """Integrator scratch for one state of this size."""
-        return Scratch(self.array("work", (WORK_SLOTS, n_bodies, 3)), self.array("coef", (max(n_springs, 1), 5)))
+        work, coef = Scratch.shapes(n_bodies, n_springs)
+        return Scratch(self.array("work", work), self.array("coef", coef))
 
 
 def integrate(targets: Sequence[Integrand], model: KernelModel, settings: Settings, n_steps: Sequence[int],
@@ -84,8 +85,9 @@ def _advance_padded(targets: Sequence[Integrand], model: KernelModel, settings: 
     v = workspace.array("v", (count, rows, 3))
     inv_mass = workspace.array("inv_mass", (count, rows))
     entered = workspace.array("entered", (count, rows - n_net), np.int8)
-    work = workspace.array("batch_work", (count, WORK_SLOTS, rows, 3))
-    coef = workspace.array("batch_coef", (count, max(model.springs.shape[0], 1), 5))
+    work_shape, coef_shape = Scratch.shapes(rows, model.springs.shape[0])
+    work = workspace.array("batch_work", (count, *work_shape))
+    coef = workspace.array("batch_coef", (count, *coef_shape))
     stats = np.concatenate([t.counters for t in targets])
     for e, t in enumerate(targets):
         n = n_bodies[e]

@@ -39,10 +39,16 @@ class Scratch(NamedTuple):
     work: np.ndarray
     coef: np.ndarray
 
+    @staticmethod
+    def shapes(n_bodies: int, n_springs: int) -> tuple[tuple[int, int, int], tuple[int, int]]:
+        """The shapes of ``work`` and ``coef`` for bodies and springs of this size."""
+        return (WORK_SLOTS, n_bodies, 3), (max(n_springs, 1), 5)
+
     @classmethod
     def sized(cls, n_bodies: int, n_springs: int) -> "Scratch":
         """Zeroed scratch for bodies and springs of this size."""
-        return cls(np.zeros((WORK_SLOTS, n_bodies, 3)), np.zeros((max(n_springs, 1), 5)))
+        work, coef = cls.shapes(n_bodies, n_springs)
+        return cls(np.zeros(work), np.zeros(coef))
 
 
 @njit(cache=True)
