@@ -14,19 +14,15 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList, EvalCallback
 from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.monitor import Monitor
-from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv, VecMonitor
+from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv
 
 from agents.hyperparams import ENV_KWARGS, POLICY, PPO_PARAMS  # from agents/hyperparams/ppo.yml
 from netgym.envs import NetCatchEnv
-from netgym.envs.sb3 import NetCatchSB3VecEnv
 
 
-def make_training_env(kind: str, n_envs: int, seed: int) -> VecEnv:
-    """The vectorised training environment: ``native`` or ``subproc``."""
-    if kind == "native":
-        env = VecMonitor(NetCatchSB3VecEnv(num_envs=n_envs, **ENV_KWARGS))
-        env.seed(seed)
-        return env
+def make_training_env(n_envs: int, seed: int) -> VecEnv:
+    """The vectorised training environment: ``make_vec_env`` with ``SubprocVecEnv`` (one
+    process per environment)."""
     NetCatchEnv()  # compile the kernels once before the workers start
     return make_vec_env("netgym:NetCatch-v0", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
                         env_kwargs=dict(ENV_KWARGS))
@@ -89,14 +85,14 @@ def plot_curve(points: list[tuple[int, float, float]], oracle: float, random: fl
     plt.close(fig)
 
 
-def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8, vec: str = "subproc",
+def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8,
           eval_every: int = 4096, eval_episodes: int = 40, seed: int = 0) -> tuple[PPO, list[tuple[int, float, float]]]:
     """Train PPO within a wall-clock budget; saves ``model.zip`` and ``best_model.zip`` in
     ``out`` and logs to TensorBoard under ``out/tb``. Returns the model and its capture curve
     (environment steps, capture rate, wall seconds)."""
     out.mkdir(parents=True, exist_ok=True)
     warnings.filterwarnings("ignore", message="Training and eval env are not of the same type")
-    env = make_training_env(vec, n_envs, seed)
+    env = make_training_env(n_envs, seed)
     eval_env = Monitor(NetCatchEnv())
     curve = CaptureCurve(eval_env.unwrapped.balls_per_episode, 60.0 * minutes)
     eval_callback = EvalCallback(eval_env, n_eval_episodes=eval_episodes, deterministic=True,

@@ -1,7 +1,9 @@
 """netgym: a mass-spring goal-net simulator and the Gymnasium environment NetCatch-v0.
 
-Importing netgym registers the environments below (and their vector entry point) with
-Gymnasium; ``gym.make("netgym:NetCatch-v0")`` imports it on demand.
+Importing netgym registers the environments below with Gymnasium;
+``gym.make("netgym:NetCatch-v0")`` imports it on demand. For many environments at once, use
+Gymnasium's ``gym.make_vec(..., vectorization_mode="sync")`` (or ``"async"``) or SB3's
+``SubprocVecEnv``.
 
 ============================  ==========================================  ================
 id                            what                                        reward_threshold
@@ -29,7 +31,6 @@ for _id, (_kwargs, _threshold) in ENVIRONMENTS.items():
         register(
             id=_id,
             entry_point="netgym.envs.net_catch:NetCatchEnv",
-            vector_entry_point="netgym.envs.vector:NetCatchVectorEnv",
             kwargs=_kwargs,
             reward_threshold=_threshold,
         )

@@ -1,5 +1,6 @@
 """Throws per second with the fast path and with full simulation, their outcome agreement, and
-vector-environment scaling over 1 and 2 threads.
+the throughput of 8 environments stepped together: a Gymnasium ``SyncVectorEnv`` in one process
+and SB3's ``SubprocVecEnv`` training environment (noisy oracle actions, the same run).
 
 Throws are drawn per seed: the thrower uniformly from the scene's ranges, the action either
 uniform in [-1, 1]^3 (half of them) or the ballistic oracle's plus Gaussian noise (sd 0.15),
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 import argparse
 
-from netgym.bench.env_throughput import sb3_throughput, vector_scaling
+from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import compare, summarise
 from netgym.bench.throws import sample_throws
 
@@ -39,12 +40,9 @@ def main() -> None:
               f"{s['fast_throws_per_s']:.1f} | {s['full_throws_per_s']:.2f} | "
               f"{s['fast_throws_per_s'] / s['full_throws_per_s']:.0f}x | {s['touching']} | "
               f"{s['fast_touching_throws_per_s']:.1f} |")
-    print("\n| vector env (basket, 8 envs) | throws/s |\n|---|---:|")
-    for threads, rate in vector_scaling("basket", 8, 2 if args.quick else 30).items():
-        print(f"| {threads} thread(s) | {rate:.1f} |")
-    print("\n| SB3 training env (basket, 8 envs) | env steps/s |\n|---|---:|")
-    for kind in ("native", "subproc"):
-        print(f"| {kind} | {sb3_throughput(kind, 8, 2 if args.quick else 30):.1f} |")
+    print("\n| 8 environments (basket, noisy oracle actions) | env steps/s |\n|---|---:|")
+    for kind, rate in env_throughput(8, 2 if args.quick else 30).items():
+        print(f"| {SETUPS[kind]} | {rate:.1f} |")
     print("\n(per-process figures; agreement and full-simulation runs use "
           f"{1 if args.quick else args.workers} process(es))")
 

@@ -9,7 +9,7 @@ Sections (each measured in this run, on one core unless stated):
 3. stability limits: the largest stable dt of each integrator by bisection, on the default and
    a stiff scene, beside the linear-stability estimate;
 4. throughput: substeps/s, ns per spring per substep, throws/s with and without the fast path,
-   vector-environment scaling over 1 and 2 threads;
+   8 environments in a Gymnasium SyncVectorEnv and in SB3's SubprocVecEnv;
 5. peers: the same net in a NumPy vectorised implementation, same dt, same reference.
 
 Usage::

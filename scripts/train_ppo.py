@@ -1,10 +1,8 @@
 """Train PPO (Stable-Baselines3) on NetCatch-v0 and plot its learning curve.
 
-The training environments are SB3's ``make_vec_env`` with ``SubprocVecEnv`` (measured 18% more
-environment steps per second than the native vector env on this 2-core machine, see
-docs/BENCHMARKS.md section 4); ``--vec native`` uses ``NetCatchVectorEnv`` through the SB3
-adapter (all throws of a step integrated in one parallel numba call). Training uses the documented ``shaped`` reward; evaluation counts
-captures on the sparse reward. Writes, under ``--out``:
+The training environments are SB3's ``make_vec_env`` with ``SubprocVecEnv`` (one process per
+environment). Training uses the documented ``shaped`` reward; evaluation counts captures on the
+sparse reward. Writes, under ``--out``:
 
 - ``model.zip``: the final model; ``best_model.zip``: the best evaluated one;
 - ``curve.csv`` and ``learning_curve.png``: capture rate against environment steps, with
@@ -35,8 +33,6 @@ def main() -> None:
     parser.add_argument("--minutes", type=float, default=20.0, help="wall-clock training budget")
     parser.add_argument("--timesteps", type=int, default=200_000, help="upper bound on environment steps")
     parser.add_argument("--n-envs", type=int, default=8)
-    parser.add_argument("--vec", choices=("native", "subproc"), default="subproc",
-                        help="SubprocVecEnv measured faster on 2 cores (docs/BENCHMARKS.md, section 4)")
     parser.add_argument("--eval-every", type=int, default=4096, help="environment steps between evaluations")
     parser.add_argument("--eval-episodes", type=int, default=40)
     parser.add_argument("--seed", type=int, default=0)
@@ -44,7 +40,7 @@ def main() -> None:
     args = parser.parse_args()
     if args.quick:
         args.timesteps, args.n_envs, args.eval_every, args.eval_episodes = 256, 2, 128, 2
-    model, points = train(args.out, args.minutes, args.timesteps, args.n_envs, args.vec, args.eval_every,
+    model, points = train(args.out, args.minutes, args.timesteps, args.n_envs, args.eval_every,
                           args.eval_episodes, args.seed)
     episodes = 4 if args.quick else 100
     final = evaluate(model, episodes, seed=10_000)

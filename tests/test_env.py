@@ -183,5 +183,5 @@ def test_registered_variants_make_pass_the_checker_and_state_their_threshold(env
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         gym_check_env(env.unwrapped)
-    vec = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point")
-    assert vec.unwrapped.envs[0].scene.name == scene
+    vec = gym.make_vec(env_id, num_envs=2, vectorization_mode="sync")
+    assert vec.unwrapped.envs[0].unwrapped.scene.name == scene

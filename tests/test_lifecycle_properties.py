@@ -1,5 +1,5 @@
 """Property tests of the environment's life cycle: random sequences of reset, step and pickle
-(and vector steps) with valid and invalid inputs.
+with valid and invalid inputs.
 
 Invariants: only the documented errors are raised; a failed call changes no state; an episode
 never pays more than ``balls_per_episode``; the same sequence with the same seed gives the same
@@ -14,7 +14,6 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from netgym.envs import NetCatchEnv
-from netgym.envs.vector import NetCatchVectorEnv
 from netgym.errors import EpisodeEndedError, SimulationDivergedError
 
 BALLS = 2
@@ -71,27 +70,3 @@ def test_random_life_cycles_keep_the_invariants_and_replay_identically(seed: int
     assert first == _replay(seed, ops)
     assert all(entry[1] for entry in first if entry[0] == "pickle")
 
-
-vector_actions = st.one_of(
-    st.lists(st.floats(-1.0, 1.0), min_size=6, max_size=6).map(lambda a: np.array(a, dtype=np.float32).reshape(2, 3)),
-    st.sampled_from([np.zeros((3, 3)), np.full((2, 3), np.nan), np.zeros(3)]))
-
-
-@given(seed=st.integers(0, 2**16), steps=st.lists(vector_actions, max_size=4))
-def test_random_vector_steps_fail_cleanly_and_replay_identically(seed: int, steps: list) -> None:
-    def replay() -> list:
-        vec = NetCatchVectorEnv(num_envs=2, balls_per_episode=BALLS)
-        vec.reset(seed=seed)
-        out = []
-        for actions in steps:
-            before = [_state(e) for e in vec.envs]
-            try:
-                obs, rewards, terminated, _, _ = vec.step(actions)
-                assert np.all(rewards <= 1.0)
-                out.append((obs.tobytes(), rewards.tobytes(), terminated.tobytes()))
-            except DOCUMENTED as error:
-                assert [_state(e) for e in vec.envs] == before
-                out.append(type(error).__name__)
-        return out
-
-    assert replay() == replay()

@@ -5,7 +5,7 @@ Modules, one job each:
 
 - :mod:`netgym.bench.throws`: seeded test throws (random and noisy-oracle actions);
 - :mod:`netgym.bench.fast_path`: every throw simulated with and without the fast path;
-- :mod:`netgym.bench.env_throughput`: throws/s of the vector env and of the SB3 training env;
+- :mod:`netgym.bench.env_throughput`: throws/s of a Gymnasium SyncVectorEnv and of the SB3 training env;
 - :mod:`netgym.bench.sim_throughput`: substeps/s per integrator and scene;
 - :mod:`netgym.bench.settings`: the integrator settings the report compares;
 - :mod:`netgym.bench.work_precision`: error against wall time on a strike into the net;

@@ -1,16 +1,24 @@
-"""Environment throughput under noisy oracle actions: ``NetCatchVectorEnv`` on 1 and 2 numba
-threads, and the Stable-Baselines3 training environment (native adapter or SubprocVecEnv)."""
+"""Environment throughput under noisy oracle actions, the two ways of stepping many NetCatch-v0
+environments: Gymnasium's ``SyncVectorEnv`` of ``gym.make("NetCatch-v0")`` environments in one
+process, and the Stable-Baselines3 training environment (``make_vec_env`` with
+``SubprocVecEnv``, one process per environment)."""
 
 from __future__ import annotations
 
 import time
 from typing import Any
 
-import numba
+import gymnasium as gym
 import numpy as np
+from gymnasium.vector import AutoresetMode, SyncVectorEnv
 
 from netgym.bench.throws import ballistic_oracle
-from netgym.envs.vector import NetCatchVectorEnv
+
+SETUPS = {
+    "sync": 'Gymnasium SyncVectorEnv of gym.make("NetCatch-v0"), one process',
+    "subproc": "SB3 make_vec_env with SubprocVecEnv (the training environment), one process per env",
+}
+"""The measured setups: key -> what it is (the row label of the reports)."""
 
 
 def _noisy_oracle_rate(env: Any, oracle: Any, obs: np.ndarray, num_envs: int, steps: int) -> float:
@@ -25,26 +33,30 @@ def _noisy_oracle_rate(env: Any, oracle: Any, obs: np.ndarray, num_envs: int, st
     return steps * num_envs / (time.perf_counter() - start)
 
 
-def vector_scaling(scene: str, num_envs: int, steps: int) -> dict[int, float]:
-    """Throws per second of NetCatchVectorEnv with noisy oracle actions, on 1 and 2 threads."""
-    rates = {}
-    for threads in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
-        numba.set_num_threads(threads)
-        env = NetCatchVectorEnv(num_envs=num_envs, scene=scene)
-        oracle = ballistic_oracle(scene)
-        obs, _ = env.reset(seed=0)
-        rates[threads] = _noisy_oracle_rate(env, oracle, obs, num_envs, steps)
-    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
-    return rates
-
-
-def sb3_throughput(kind: str, num_envs: int, steps: int) -> float:
-    """Environment steps per second of the SB3 training environment (``native``: the vector env
-    through the adapter; ``subproc``: ``make_vec_env`` with ``SubprocVecEnv``), noisy oracle actions."""
-    from agents.training import make_training_env
-
-    env = make_training_env(kind, num_envs, seed=0)
-    oracle = ballistic_oracle("basket")  # the scene make_training_env trains on
-    rate = _noisy_oracle_rate(env, oracle, env.reset(), num_envs, steps)
+def _sync_rate(num_envs: int, steps: int) -> float:
+    """``SyncVectorEnv`` of ``num_envs`` ``gym.make("NetCatch-v0")``. Same-step autoreset, as
+    SB3's, so that every environment step is a throw."""
+    env = SyncVectorEnv([lambda: gym.make("NetCatch-v0") for _ in range(num_envs)],
+                        autoreset_mode=AutoresetMode.SAME_STEP)
+    obs, _ = env.reset(seed=0)
+    rate = _noisy_oracle_rate(env, ballistic_oracle("basket"), obs, num_envs, steps)
     env.close()
     return rate
+
+
+def _subproc_rate(num_envs: int, steps: int) -> float:
+    """The SB3 training environment of ``agents.training`` (its subprocesses start with
+    forkserver: call this under ``if __name__ == "__main__":``)."""
+    from agents.training import make_training_env
+
+    env = make_training_env(num_envs, seed=0)
+    rate = _noisy_oracle_rate(env, ballistic_oracle("basket"), env.reset(), num_envs, steps)
+    env.close()
+    return rate
+
+
+def env_throughput(num_envs: int, steps: int) -> dict[str, float]:
+    """Environment steps (throws) per second of each of :data:`SETUPS` on the basket, measured
+    one after the other in this run: ``num_envs`` environments, ``steps`` steps of noisy oracle
+    actions."""
+    return {"sync": _sync_rate(num_envs, steps), "subproc": _subproc_rate(num_envs, steps)}

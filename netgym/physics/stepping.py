@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from netgym.physics.contacts import resolve_contacts
-from netgym.physics.integrators import START_SLOT, Scratch, step_euler, step_imex_euler, step_implicit_euler, step_rk4
+from netgym.physics.integrators import START_SLOT, step_euler, step_imex_euler, step_implicit_euler, step_rk4
 from netgym.physics.kinds import Integrator
 
 OK, DIVERGED = 0, 1
@@ -158,16 +158,3 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
             stats[0].substeps += 1
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
-
-@njit(cache=True, parallel=True)
-def advance_batch(x, v, inv_mass, entered, n_bodies, n_steps, model, settings, work, coef, stats, status):
-    """:func:`advance` for many states of one scene at once, in parallel (``prange``).
-
-    State ``e`` owns rows ``:n_bodies[e]`` of ``x[e]``, ``v[e]``, ``inv_mass[e]`` (padded
-    arrays) and integrates ``n_steps[e]`` steps (none when 0); its result goes to ``status[e]``.
-    """
-    for e in prange(x.shape[0]):
-        if n_steps[e] > 0:
-            n = n_bodies[e]
-            status[e] = advance(x[e, :n], v[e, :n], inv_mass[e, :n], entered[e, :n - model.n_net], model,
-                                settings, n_steps[e], Scratch(work[e, :, :n], coef[e]), stats[e:e + 1])
