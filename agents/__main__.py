@@ -34,9 +34,9 @@ def main() -> None:
     print(f"NetCatch-v0, scene basket, {args.episodes} episodes x 3 throws, seeds 10000..{10000 + args.episodes - 1}")
     for name in (str(model_path), "oracle", "random"):
         start = time.perf_counter()
-        result = evaluate(load_policy(name), args.episodes, seed=10_000)
-        rate = result.throws / (time.perf_counter() - start)
         label = "PPO " + Path(name).name if name.endswith(".zip") else name
+        result = evaluate(load_policy(name), args.episodes, seed=10_000, progress=label)
+        rate = result.throws / (time.perf_counter() - start)
         print(f"  {label:<24} capture rate {result}  [{rate:.0f} throws/s]")
 
 

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 import numpy as np
+from tqdm import tqdm
 
 from netgym.envs import NetCatchEnv
 
@@ -47,11 +48,13 @@ def wilson_interval(successes: int, trials: int, z: float = 1.96) -> tuple[float
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
-def evaluate(policy: Policy, episodes: int, seed: int = 0, **env_kwargs: Any) -> CaptureRate:
-    """Run ``episodes`` episodes seeded ``seed, seed + 1, ...`` and count captured throws."""
+def evaluate(policy: Policy, episodes: int, seed: int = 0, progress: str | None = None,
+             **env_kwargs: Any) -> CaptureRate:
+    """Run ``episodes`` episodes seeded ``seed, seed + 1, ...`` and count captured throws;
+    with a ``progress`` label, a progress bar with ETA on stderr."""
     env = NetCatchEnv(**env_kwargs)
     captured = throws = 0
-    for episode in range(episodes):
+    for episode in tqdm(range(episodes), desc=progress, unit="episode", disable=progress is None, leave=False):
         obs, _ = env.reset(seed=seed + episode)
         done = False
         while not done:

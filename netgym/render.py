@@ -91,16 +91,8 @@ class Renderer:
         self.camera = scene_camera(sim, width, height)
         self.background = _background(self.camera)
         self.human, self.fps = human, fps
-        self._next_frame = -math.inf
         self._window = None
         self._clock = None
-
-    def due(self, time: float) -> bool:
-        """True if a frame is due at simulated ``time`` (frames are ``1 / fps`` apart)."""
-        if time + 1e-9 < self._next_frame and time >= self._next_frame - 1.0 / self.fps:
-            return False
-        self._next_frame = time + 1.0 / self.fps
-        return True
 
     def _line_fragments(self, a: np.ndarray, b: np.ndarray, colour: np.ndarray, thickness: int):
         pa, da = self.camera.project(a)

@@ -26,7 +26,7 @@ def main() -> None:
     args = parser.parse_args()
     policy = load_policy(args.policy, args.scene)
     start = time.perf_counter()
-    result = evaluate(policy, args.episodes, seed=args.seed, scene=args.scene)
+    result = evaluate(policy, args.episodes, seed=args.seed, progress=str(args.policy), scene=args.scene)
     seconds = time.perf_counter() - start
     print(f"{args.policy} on {args.scene}: capture rate {result} over {args.episodes} episodes "
           f"(seeds {args.seed}..{args.seed + args.episodes - 1}; {result.throws / seconds:.1f} throws/s)")

@@ -1,7 +1,7 @@
 """Golden episodes: whole multi-ball episodes on both scenes with all five integrators, a full
-(no shortcut) episode, a rendered episode and a vector-environment run must reproduce, bit for
-bit, the results recorded in ``tests/golden/episodes.json``: every observation, reward, outcome,
-simulated time, substep count and a digest of the whole simulator state after each step.
+(no shortcut) episode and a rendered episode must reproduce, bit for bit, the results recorded
+in ``tests/golden/episodes.json``: every observation, reward, outcome, simulated time, substep
+count and a digest of the whole simulator state after each step.
 
 The recorded actions are replayed, so the test needs no agent. After a change that is meant to
 alter results, regenerate the file deliberately and say so in the commit::
@@ -21,7 +21,6 @@ import numpy as np
 import pytest
 
 from netgym.envs import NetCatchEnv
-from netgym.envs.vector import NetCatchVectorEnv
 
 GOLDEN = Path(__file__).parent / "golden" / "episodes.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
@@ -95,26 +94,6 @@ def _run_episode(kwargs: dict, actions: list[list[float]] | None) -> tuple[list[
     return used, records
 
 
-def _run_vector(actions: list[list[list[float]]] | None) -> tuple[list, list[dict]]:
-    vec = NetCatchVectorEnv(num_envs=3, balls_per_episode=2)
-    obs, _ = vec.reset(seed=3)
-    used, records = [], []
-    for k in range(3):  # crosses an episode end: autoreset in the same step
-        if actions is None:
-            from agents.oracle import BallisticOracle
-
-            batch = BallisticOracle(vec.envs[0].scene).predict(obs)[0]
-        else:
-            batch = np.array(actions[k], dtype=np.float32)
-        used.append(batch.tolist())
-        obs, rewards, terminated, _, infos = vec.step(batch)
-        records.append({"obs": _hex(obs), "rewards": _hex(rewards), "terminated": terminated.tolist(),
-                        "reasons": list(infos["reason"]), "substeps": [int(s) for s in infos["substeps"]],
-                        "sim_time": _hex(infos["sim_time"]), "states": [_state_digest(e) for e in vec.envs]})
-    vec.close()
-    return used, records
-
-
 def _golden() -> dict:
     if WRITE:
         return {}
@@ -149,20 +128,9 @@ def test_episode_is_bitwise_identical_to_the_golden_run(name: str) -> None:
     _compare(name, golden["steps"], records)
 
 
-def test_vector_run_is_bitwise_identical_to_the_golden_run() -> None:
-    golden = _golden().get("vector")
-    if WRITE:
-        actions, records = _run_vector(None)
-        _store("vector", {"actions": actions, "steps": records})
-        return
-    assert golden is not None, "no golden record for the vector run"
-    _, records = _run_vector(golden["actions"])
-    _compare("vector", golden["steps"], records)
-
-
 def test_golden_episodes_mix_captures_and_misses() -> None:
     """The recorded episodes exercise loaded nets: some throws are caught, some missed."""
-    steps = [s for name, entry in _golden().items() if name != "vector" for s in entry["steps"]]
+    steps = [s for entry in _golden().values() for s in entry["steps"]]
     if WRITE:
         pytest.skip("recording")
     captured = sum(s["captured"] for s in steps)

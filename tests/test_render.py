@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 
 import gymnasium as gym
@@ -10,6 +11,10 @@ import pytest
 
 import netgym  # noqa: F401
 from agents.oracle import BallisticOracle
+from netgym.config import load_scene
+from netgym.envs import NetCatchEnv
+from netgym.physics.frames import FrameClock
+from netgym.physics.simulator import Simulator
 
 
 @pytest.mark.parametrize("scene", ["basket", "goal"])
@@ -52,3 +57,64 @@ def test_human_mode_runs_headless() -> None:
     env.step(np.zeros(3, dtype=np.float32))
     env.close()
     env.close()
+
+
+def _episode(render_mode: str | None, render_settling: bool = False, scene: str = "basket") -> tuple[list, list]:
+    """Steps of one seeded 4-ball episode (oracle, noisy oracle, random actions) and the frames of each."""
+    env = gym.make("NetCatch-v0", scene=scene, balls_per_episode=4, render_mode=render_mode,
+                   render_settling=render_settling).unwrapped
+    obs, _ = env.reset(seed=5)
+    oracle, rng = BallisticOracle(env.scene), np.random.default_rng(2)
+    steps, frames = [], []
+    for k in range(4):
+        action = oracle.predict(obs)[0] if k % 2 == 0 else rng.uniform(-1, 1, 3).astype(np.float32)
+        obs, reward, _, _, info = env.step(action)
+        s = env.sim.state
+        steps.append((obs.tobytes(), reward, info["reason"], info["sim_time"], info["substeps"],
+                      info["final_position"].tobytes(), s.x.tobytes(), s.v.tobytes(), s.time))
+        frames.append(env.render() if render_mode == "rgb_array_list" else None)
+    env.close()
+    return steps, frames
+
+
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+def test_rendering_changes_nothing(scene: str) -> None:
+    """Filming throws (and the settling) stops integration at frame instants, yet every outcome,
+    substep count and the whole state stay bitwise those of the unrendered episode."""
+    plain, _ = _episode(None, scene=scene)
+    assert _episode("rgb_array_list", scene=scene)[0] == plain
+    assert _episode("rgb_array_list", render_settling=True, scene=scene)[0] == plain
+
+
+def test_every_throw_is_filmed_at_render_fps() -> None:
+    """Each step returns the frames of its throw from the launch, misses decided at launch too
+    (their closed-form flight is drawn to the landing); settling frames only on request."""
+    steps, frames = _episode("rgb_array_list")
+    fps = NetCatchEnv.metadata["render_fps"]
+    for (_, _, reason, sim_time, *_), throw_frames in zip(steps, frames):
+        assert len(throw_frames) >= math.floor(sim_time * fps) + 1
+        if reason == "flies_away":
+            assert len(throw_frames) >= 10  # the flight to the ground, though decided early
+    _, with_settling = _episode("rgb_array_list", render_settling=True)
+    assert sum(map(len, with_settling)) > sum(map(len, frames))
+
+
+def test_frames_are_one_period_apart() -> None:
+    """Frame instants are exactly 1/fps apart: integration stops at the substep nearest each
+    (within dt/2), closed-form flight at the instant itself; none is skipped or taken twice."""
+    sim = Simulator(load_scene("basket"))
+    clock = FrameClock(1.0 / 30.0)
+    taken: list[float] = []
+
+    def observe(s: Simulator) -> None:
+        if clock.take(s.state.time, 0.5 * s.dt + 1e-9):
+            taken.append(s.state.time)
+
+    for velocity in ([5.0, 0.0, 6.1], [2.0, 0.0, 3.0]):  # into the opening (caught); short of the net
+        taken.clear()
+        result = sim.throw([-5.0, 0.0, 1.8], velocity, observer=observe, frames=clock)
+        times = np.array(taken) - clock.anchor
+        k = np.round(times * 30.0)
+        assert np.array_equal(k, np.arange(len(k)))                    # every instant once, from the launch
+        assert np.abs(times - k / 30.0).max() <= 0.5 * sim.dt + 1e-9
+        assert len(k) >= math.floor(result.time * 30.0)

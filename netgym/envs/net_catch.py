@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from enum import IntEnum
 from pathlib import Path
@@ -11,14 +12,16 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from netgym.arguments import is_integer
+from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError
 from netgym.launch import Thrower, action_to_velocity, opening_miss_distance, sample_thrower
+from netgym.physics.frames import FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
 
 REWARD_MODES = ("sparse", "shaped")
+RESET_OPTIONS = ("overrides", "thrower")
 
 
 class ObservationIndex(IntEnum):
@@ -33,6 +36,15 @@ class ObservationIndex(IntEnum):
     PILE_HEIGHT = 6     # highest caught ball (or the net's lowest point) minus the opening centre's height (m)
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
 SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
+
+
+def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float) -> spaces.Box:
+    """The observation bounds of ``scene`` (opening ``centre``, lowest net point ``floor``)."""
+    t, cz = scene.throw, float(centre[2])
+    top = scene.net.upper[2] + scene.ball.radius - cz
+    low = np.array([t.distance[0], t.height[0] - cz, -1, -1, 0, 0, -cz], dtype=np.float32)
+    high = np.array([t.distance[1], t.height[1] - cz, 1, 1, 1, 1, max(top, floor - cz)], dtype=np.float32)
+    return spaces.Box(low, high, dtype=np.float32)
 
 
 class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
@@ -106,6 +118,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"`` |
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
+    | ``render_settling`` | False | ``rgb_array_list``/``human``: also film the net settling between throws |
     | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit) or ``"line"`` (goal: the whole ball crossed the mouth) |
 
     ## Registered ids
@@ -127,15 +140,17 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     def __init__(self, scene: str | Path | SceneConfig = "basket", integrator: str | None = None,
                  dt: float | None = None, balls_per_episode: int = 3, reward_mode: str = "sparse",
                  render_mode: str | None = None, fast: bool = True,
-                 overrides: dict[str, Any] | None = None, capture_rule: str | None = None) -> None:
+                 overrides: dict[str, Any] | None = None, capture_rule: str | None = None,
+                 render_settling: bool = False) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
             raise ValueError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
         if not is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
             raise ValueError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
-        if not isinstance(fast, (bool, np.bool_)):
-            raise ValueError(f"fast = {fast!r}; allowed: True or False")
+        for name, flag in (("fast", fast), ("render_settling", render_settling)):
+            if not isinstance(flag, (bool, np.bool_)):
+                raise ValueError(f"{name} = {flag!r}; allowed: True or False")
         config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
         changes = dict(overrides or {})
         if integrator is not None:
@@ -146,14 +161,18 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             changes["capture_rule"] = capture_rule
         self.sim = Simulator(config.replace(changes) if changes else config)
         self.scene = self.sim.config
+        self._base_scene = self.scene
         self.balls_per_episode = int(balls_per_episode)
         self.reward_mode = reward_mode
         self.render_mode = render_mode
         self.fast = bool(fast)
+        self.render_settling = bool(render_settling)
+        self._frame_clock = (FrameClock(1.0 / self.metadata["render_fps"])
+                             if render_mode in ("human", "rgb_array_list") else None)
         self._centre = self.sim.opening.centre
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
-        self.observation_space = self._observation_space()
+        self.observation_space = _observation_space(self.scene, self._centre, self._floor)
         self.observation_structure = {index.name.lower(): int(index) for index in ObservationIndex}
         self.thrower: Thrower | None = None
         self._ended = False
@@ -163,13 +182,6 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._frames: list[np.ndarray] = []
 
     # ------------------------------------------------------------------ spaces
-    def _observation_space(self) -> spaces.Box:
-        t, cz = self.scene.throw, float(self._centre[2])
-        top = self.scene.net.upper[2] + self.scene.ball.radius - cz
-        low = np.array([t.distance[0], t.height[0] - cz, -1, -1, 0, 0, -cz], dtype=np.float32)
-        high = np.array([t.distance[1], t.height[1] - cz, 1, 1, 1, 1, max(top, self._floor - cz)], dtype=np.float32)
-        return spaces.Box(low, high, dtype=np.float32)
-
     def _observation(self) -> np.ndarray:
         assert self.thrower is not None
         cz = float(self._centre[2])
@@ -188,22 +200,81 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     # ------------------------------------------------------------------ gym API
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None) -> tuple[np.ndarray, dict]:
-        """Start an episode: the net at rest and empty, a new thrower. No ``options`` are
-        defined yet: any given raise a ValueError."""
-        if options is not None and not isinstance(options, Mapping):
-            raise ValueError(f"options must be a dict or None, got {type(options).__name__}")
-        if options:
-            raise ValueError(f"unknown reset option(s) {sorted(map(str, options))}; NetCatch-v0 defines none")
+        """Start an episode: the net at rest and empty, a new thrower.
+
+        ``options`` (all optional):
+
+        - ``"overrides"``: scene fields for this and the following episodes, as in ``make``'s
+          ``overrides`` (e.g. ``{"ball.mass": 0.5, "contact.ball_net.friction": 0.5}``), applied to
+          the scene the env was made with. Fields that change the spaces (the ``throw`` ranges)
+          are refused: make a new env for those.
+        - ``"thrower"``: the first thrower of the episode, a dict with any of ``distance`` (m),
+          ``bearing`` (degrees), ``height`` (m) inside the scene's ``throw`` ranges; what is left
+          out is drawn as usual.
+
+        Bad options raise a ValueError (or ConfigError) and leave the env as it was.
+        """
+        options = self._check_options(options)
+        if "overrides" in options:
+            self._set_scene(self._base_scene.replace(options["overrides"]))
         super().reset(seed=seed)
         self.sim.reset()
         self._throws_done = 0
         self._caught = 0
         self._ended = False
         self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
+        if "thrower" in options:
+            self.thrower = dataclasses.replace(self.thrower, **options["thrower"])
         self._frames = []
-        if self.render_mode in ("human", "rgb_array_list"):
+        if self._frame_clock is not None:
+            self._frame_clock.restart(self.sim.state.time)
             self._record_frame(self.sim)
         return self._observation(), {}
+
+    def _check_options(self, options: Any) -> dict[str, Any]:
+        """Validate reset options (see :meth:`reset`) before anything changes."""
+        if options is None:
+            return {}
+        if not isinstance(options, Mapping):
+            raise ValueError(f"options must be a dict or None, got {type(options).__name__}")
+        unknown = sorted(set(map(str, options)) - set(RESET_OPTIONS))
+        if unknown:
+            raise ValueError(f"unknown reset option(s) {unknown}; NetCatch-v0 takes {list(RESET_OPTIONS)}")
+        thrower = options.get("thrower", {})
+        if not isinstance(thrower, Mapping):
+            raise ValueError(f"options['thrower'] must be a dict, got {type(thrower).__name__}")
+        ranges = {"distance": self.scene.throw.distance, "bearing": self.scene.throw.bearing,
+                  "height": self.scene.throw.height}
+        for key, value in thrower.items():
+            if key not in ranges:
+                raise ValueError(f"options['thrower'] has unknown key {key!r}; allowed: {list(ranges)}")
+            lo, hi = ranges[key]
+            if not is_real(value) or not lo <= float(value) <= hi:
+                raise ValueError(f"options['thrower']['{key}'] = {value!r}; allowed: a number in [{lo:g}, {hi:g}]")
+        overrides = options.get("overrides", {})
+        if not isinstance(overrides, Mapping):
+            raise ValueError(f"options['overrides'] must be a dict, got {type(overrides).__name__}")
+        if any(str(field).startswith("throw.") for field in overrides):
+            raise ValueError("options['overrides'] may not change the throw ranges (they define the spaces); "
+                             "make a new env with those overrides instead")
+        checked: dict[str, Any] = {}
+        if "thrower" in options:
+            checked["thrower"] = {k: float(v) for k, v in thrower.items()}
+        if "overrides" in options:
+            checked["overrides"] = dict(overrides)
+        return checked
+
+    def _set_scene(self, config: SceneConfig) -> None:
+        """Simulate ``config`` from now on; refused (nothing changed) if the spaces would change."""
+        if config == self.scene:
+            return
+        sim = Simulator(config)
+        centre, floor = sim.opening.centre, float(sim.state.x[:, 2].min())
+        if _observation_space(config, centre, floor) != self.observation_space:
+            raise ValueError("these overrides change the observation space's bounds (the net's geometry or the "
+                             "ball radius); make a new env with them instead")
+        self.sim, self.scene, self._centre, self._floor = sim, config, centre, floor
+        self.close()  # the renderer's camera and frames belong to the old scene
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict]:
         """Throw one ball with launch ``action`` and simulate until its outcome is decided."""
@@ -214,9 +285,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                                     f"(balls_per_episode); call reset() before step()")
         velocity = self.action_velocity(action)
         launch = self.thrower.position
-        frame_dt = 1.0 / self.metadata["render_fps"] if self.render_mode in ("human", "rgb_array_list") else None
-        observer = self._record_frame if frame_dt is not None else None
-        result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frame_dt=frame_dt)
+        observer = self._record_frame if self._frame_clock is not None else None
+        result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frames=self._frame_clock,
+                                settle_frames=self.render_settling)
         return self.after_throw(launch, velocity, result)
 
     def action_velocity(self, action: np.ndarray) -> np.ndarray:
@@ -264,8 +335,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         return self._renderer
 
     def _record_frame(self, sim: Simulator) -> None:
-        renderer = self._get_renderer()
-        if renderer.due(sim.state.time):
+        assert self._frame_clock is not None
+        if self._frame_clock.take(sim.state.time, 0.5 * sim.dt + 1e-9):
+            renderer = self._get_renderer()
             frame = renderer.draw(sim)
             if self.render_mode == "rgb_array_list":
                 self._frames.append(frame)

@@ -67,7 +67,7 @@ def _arc_entry(p: np.ndarray, v: np.ndarray, g: float, lo: np.ndarray, hi: np.nd
     return min((t for t, _ in times), default=None)
 
 
-def _ground_time(p: np.ndarray, v: np.ndarray, ground: Ground) -> float:
+def ground_time(p: np.ndarray, v: np.ndarray, ground: Ground) -> float:
     """Time until the ball's lowest point reaches the ground (inf if it never does)."""
     height = p[2] - ground.radius
     if ground.gravity == 0.0:
@@ -111,7 +111,7 @@ def advance(p: np.ndarray, v: np.ndarray, tau: float, ground: Ground) -> tuple[n
     for _ in range(_MAX_ARCS):
         if _sliding(p, v, ground):
             return _slide(p, v, tau, ground)
-        t_ground = _ground_time(p, v, ground)
+        t_ground = ground_time(p, v, ground)
         t = min(tau, t_ground)
         p = p + v * t
         p[2] += 0.5 * ground.gravity * t * t
@@ -136,7 +136,7 @@ def entry_time(p: np.ndarray, v: np.ndarray, lo: np.ndarray, hi: np.ndarray, gro
             return None
         if _sliding(p, v, ground):
             return _slide_entry(p, v, lo, hi, ground, elapsed, horizon)
-        t_ground = min(_ground_time(p, v, ground), horizon - elapsed)
+        t_ground = min(ground_time(p, v, ground), horizon - elapsed)
         hit = _arc_entry(p, v, ground.gravity, lo, hi, t_ground)
         if hit is not None:
             return elapsed + hit

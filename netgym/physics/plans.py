@@ -4,19 +4,18 @@ A plan is a generator that holds all the decisions of a piece of simulation (a t
 relaxation of the net) and yields typed requests: :class:`Integrate` (integrate this many
 steps) or :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
-requests of one or many simulators, integrating all pending requests of one kind in one call
-(parallel across simulators), and throws a divergence back into the plan whose state failed.
+requests of a simulator's plan, one integration call per :class:`Integrate`, and throws a
+divergence back into the plan.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Generator, Sequence
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any, Protocol, Union
 
-from netgym.errors import NetgymError
 from netgym.physics.integration import Integrand, Workspace, integrate
-from netgym.physics.model import KernelModel, Settings
+from netgym.physics.model import KernelModel, Settings, State
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
 
@@ -40,6 +39,28 @@ Plan = Generator[Request, None, Any]
 """A simulation plan: yields :data:`Request` objects, returns its result."""
 
 
+class Clock(Protocol):
+    """Where integration must stop for an observer (a :class:`~netgym.physics.frames.FrameClock`)."""
+
+    def steps_to_next(self, time: float, dt: float) -> int:
+        """Substeps of ``dt`` from ``time`` to the next stop (at least 1)."""
+
+
+def integrate_until_stops(state: State, request: Integrate, clock: Clock | None) -> Plan:
+    """Carry out ``request`` on ``state``, in pieces that end at the stops of ``clock`` when one
+    is given. The pieces take the same substeps as the whole and the time ends as the whole's
+    would, so a plan that decides between whole requests decides the same with or without it."""
+    if clock is None:
+        yield request
+        return
+    end, left = state.time + request.n_steps * request.dt, request.n_steps
+    while left > 0:
+        n = min(left, clock.steps_to_next(state.time, request.dt))
+        yield Integrate(n, request.integrator, request.dt)
+        left -= n
+    state.time = end
+
+
 class Drivable(Integrand, Protocol):
     """What :func:`drive` needs of a simulator: :class:`Integrand` and its kernel records."""
 
@@ -51,45 +72,23 @@ class Drivable(Integrand, Protocol):
         """Kernel settings for this integrator and dt."""
 
 
-def drive(sims: Sequence[Drivable], plans: Sequence[Plan], workspace: Workspace,
-          observer: Callable[[Any], None] | None = None, names: Sequence[str] | None = None) -> list[Any]:
-    """Carry out ``plans[i]`` on ``sims[i]`` until every plan has returned; returns their results.
+def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[Any], None] | None = None) -> Any:
+    """Carry out ``plan`` on ``sim`` until it returns; returns its result.
 
-    Each round integrates all pending :class:`Integrate` requests that share an integrator and
-    dt in one :func:`~netgym.physics.integration.integrate` call, then resumes every plan (with
-    the divergence error of its own integration, if any). ``observer(sim)`` is called after
-    every request carried out without error, for example to record frames. A netgym error
-    raised by plan ``i`` propagates, its message prefixed with ``names[i]`` when names are given.
+    Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call;
+    the plan is then resumed, with the divergence error of that integration thrown into it if
+    there was one. ``observer(sim)`` is called after every request carried out without error,
+    for example to record frames.
     """
-    results: list[Any] = [None] * len(plans)
-    pending: dict[int, Request] = {}
-
-    def resume(i: int, error: Exception | None) -> None:
+    error: Exception | None = None
+    while True:
         try:
-            pending[i] = plans[i].throw(error) if error is not None else next(plans[i])
+            request = plan.throw(error) if error is not None else next(plan)
         except StopIteration as stop:
-            pending.pop(i, None)
-            results[i] = stop.value
-        except NetgymError as failure:
-            if names is None:
-                raise
-            raise type(failure)(f"{names[i]}: {failure}") from failure
-
-    for i in range(len(plans)):
-        resume(i, None)
-    while pending:
-        errors: dict[int, Exception] = {}
-        groups: dict[tuple[int, float], list[int]] = {}
-        for i, request in pending.items():
-            if isinstance(request, Integrate):
-                groups.setdefault((request.integrator, request.dt), []).append(i)
-        for (integrator, dt), members in groups.items():
-            targets = [sims[i] for i in members]
-            failures = integrate(targets, targets[0].kernel_model, targets[0].settings(integrator, dt),
-                                 [pending[i].n_steps for i in members], workspace)
-            errors.update((i, e) for i, e in zip(members, failures) if e is not None)
-        for i in list(pending):
-            if observer is not None and i not in errors:
-                observer(sims[i])
-            resume(i, errors.get(i))
-    return results
+            return stop.value
+        error = None
+        if isinstance(request, Integrate):
+            error = integrate(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
+                              workspace)
+        if error is None and observer is not None:
+            observer(sim)

@@ -22,7 +22,8 @@ from netgym.physics.integration import Workspace
 from netgym.physics.kinds import Integrator
 from netgym.physics.model import KernelModel, Model, Settings, State
 from netgym.physics.opening import Opening
-from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, drive
+from netgym.physics.frames import FrameClock
+from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, drive, integrate_until_stops
 from netgym.physics.progress import Progress
 from netgym.physics.stability import NetModes, net_modes, stable_dt
 from netgym.physics.stepping import new_counters
@@ -230,8 +231,10 @@ class Simulator:
         """
         self.run(self.relax_plan(max_time))
 
-    def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None) -> Plan:
-        """:meth:`relax` as a plan (see :meth:`run`)."""
+    def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
+                   frames: FrameClock | None = None) -> Plan:
+        """:meth:`relax` as a plan (see :meth:`run`); with ``frames``, its chunks end at the
+        clock's instants too."""
         integrator = self.integrator if integrator is None else integrator
         dt = self.dt if dt is None else dt
         steps = max(1, round(CHUNK_SECONDS / dt))
@@ -239,7 +242,7 @@ class Simulator:
         started = self.state.time
         window_start, window_time = self.state.x.copy(), self.state.time
         while self.state.time - started < max_time:
-            yield Integrate(steps, integrator, dt)
+            yield from integrate_until_stops(self.state, Integrate(steps, integrator, dt), frames)
             kinetic = self.energy().kinetic
             if kinetic < previous:
                 self.state.v[:] = 0.0
@@ -253,24 +256,26 @@ class Simulator:
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
     def throw(self, position: Any, velocity: Any, fast: bool = True,
-              observer: Callable[["Simulator"], None] | None = None, frame_dt: float | None = None) -> ThrowResult:
+              observer: Callable[["Simulator"], None] | None = None, frames: FrameClock | None = None,
+              settle_frames: bool = False) -> ThrowResult:
         """Launch a ball and simulate until its outcome is decided (see :class:`Throw`).
 
         The net is first brought to rest if it still moves. A captured ball stays in the scene;
         a missed one is removed. With ``fast=False`` everything is integrated from launch to the
         time limit (the reference the fast path is tested against). ``observer(sim)`` is called
-        at least every ``frame_dt`` simulated seconds (for recording frames).
+        after every request; with ``frames`` the requests end at its instants (see :class:`Throw`).
         """
-        return self.run(self.throw_plan(position, velocity, fast, frame_dt), observer)
+        return self.run(self.throw_plan(position, velocity, fast, frames, settle_frames), observer)
 
-    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frame_dt: float | None = None) -> Plan:
+    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frames: FrameClock | None = None,
+                   settle_frames: bool = False) -> Plan:
         """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
-        return Throw(self, position, velocity, fast, frame_dt).plan()
+        return Throw(self, position, velocity, fast, frames, settle_frames).plan()
 
     def run(self, plan: Plan, observer: Callable[["Simulator"], None] | None = None) -> Any:
-        """Carry out a plan on this simulator alone (with :func:`~netgym.physics.plans.drive`)
-        and return its result. ``observer(sim)`` is called after every request."""
-        return drive([self], [plan], self.workspace, observer)[0]
+        """Carry out a plan on this simulator (with :func:`~netgym.physics.plans.drive`) and
+        return its result. ``observer(sim)`` is called after every request."""
+        return drive(self, plan, self.workspace, observer)
 
     def divergence_advice(self, integrator: int) -> str:
         """What to change after ``integrator`` diverged on this scene."""

@@ -20,8 +20,9 @@ import numpy as np
 from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
 from netgym.physics import contacts, flight, stepping
+from netgym.physics.frames import FrameClock
 from netgym.physics.kinds import Contact
-from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick
+from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, integrate_until_stops
 from netgym.physics.surroundings import survey
 
 if TYPE_CHECKING:
@@ -31,6 +32,8 @@ REST_WINDOW = 0.1             # s during which a ball and its surroundings must 
 REST_REACH = 0.2              # m around a ball within which moving bodies keep it from being at rest
 CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
 AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
+TIME_EPSILON = 1e-9          # s: instants closer than this are the same
+MISS_FILMED_AFTER_LANDING = 0.5  # s of a missed ball's flight filmed after it first lands
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 
 
@@ -71,17 +74,21 @@ class Throw:
     :param position: release point (m).
     :param velocity: launch velocity (m/s).
     :param fast: take the fast path; False integrates everything to the time limit (the reference).
-    :param frame_dt: when set, the plan yields at least every ``frame_dt`` simulated seconds
-        (a :class:`~netgym.physics.plans.Tick` while the ball flies in closed form).
+    :param frames: when given, the plan stops at every instant of this clock (integration
+        chunks end at the substep nearest it; a :class:`~netgym.physics.plans.Tick` while the
+        ball flies in closed form), from the launch on, and a miss decided in closed form is
+        flown on to its landing for the frames (then put back as decided).
+    :param settle_frames: also film the settling of the net before the launch (with ``frames``).
     """
 
     def __init__(self, sim: "Simulator", position: Any, velocity: Any, fast: bool = True,
-                 frame_dt: float | None = None) -> None:
+                 frames: FrameClock | None = None, settle_frames: bool = False) -> None:
         self.sim = sim
         self.position = vector_argument(position, "position")  # fail on bad input before any work
         self.velocity = vector_argument(velocity, "velocity")
         self.fast = fast
-        self.frame_dt = frame_dt
+        self.frames = frames
+        self.settle_frames = settle_frames
         m = sim.model
         self.ground = flight.Ground(m.ball_radius, m.gravity, m.contact[Contact.BALL_GROUND, 0],
                                     m.contact[Contact.BALL_GROUND, 1], m.restitution_threshold)
@@ -91,16 +98,25 @@ class Throw:
         rest if it still moves. A captured ball stays in the scene; a missed one is removed."""
         sim = self.sim
         substeps, time = sim.substeps, sim.state.time
+        filmed = self.frames is not None and self.settle_frames
         if sim.awake:
-            yield from sim.relax_plan()
+            if self.frames is not None and not filmed:
+                self.frames.pause()
+            yield from sim.relax_plan(frames=self.frames if filmed else None)
         settled = {"settle_substeps": sim.substeps - substeps, "settle_time": sim.state.time - time}
         start = sim.state.copy()
         ball = sim.launch_ball(self.position, self.velocity)
+        if self.frames is not None:
+            if not filmed:
+                self.frames.restart(sim.state.time)
+            yield Tick()  # the launch
         try:
             result = yield from self._steps(ball)
         except SimulationDivergedError:
             sim.state.restore(start)
             raise
+        if self.frames is not None and result.reason == "flies_away":
+            yield from self._film_miss(sim.model.n_net + ball, t_limit=start.time + sim.config.simulation.time_limit)
         if not result.captured:
             sim.remove_ball(ball)
         elif result.reason == "crossed_line":
@@ -130,7 +146,7 @@ class Throw:
         row = m.n_net + ball
         t0, substeps0 = s.time, sim.substeps
         deadline = t0 + cfg.time_limit
-        chunk = max(1, round(min(CHUNK_SECONDS, self.frame_dt or math.inf) / cfg.dt))
+        chunk = max(1, round(CHUNK_SECONDS / cfg.dt))
         reference_energy = self._potential_without(row, sim.energy())
         rest_since: float | None = None
         line = sim.config.capture_rule == "line"
@@ -145,7 +161,8 @@ class Throw:
                 if self._clearance(row) < 0.0:
                     continue  # launched overlapping something: let the contacts act before deciding
             elif round((deadline - s.time) / cfg.dt) > 0:
-                yield Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
+                request = Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
+                yield from integrate_until_stops(s, request, self.frames)
             crossed = crossed or (line and self._crossed_line(row, ball))
             if fast and crossed:
                 reason = "crossed_line"
@@ -187,17 +204,38 @@ class Throw:
                 return None
             speed = float(np.linalg.norm(s.v[row]))
             tau = (gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g))
-            tau = min(tau, deadline - s.time, self.frame_dt or math.inf)
+            tau = min(tau, deadline - s.time)
             before = s.x[n_net:].copy()
-            s.x[row], s.v[row] = flight.advance(s.x[row], s.v[row], tau, self.ground)
+            start = s.x[row].copy(), s.v[row].copy(), s.time
+            if self.frames is not None:
+                yield from self._film_flight(row, *start, start[2] + tau)
+            s.x[row], s.v[row] = flight.advance(start[0], start[1], tau, self.ground)
             stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
-            s.time += tau
+            s.time = start[2] + tau
             if sim.config.capture_rule == "line" and self._crossed_line(row, ball):
                 return "crossed_line"
-            if self.frame_dt is not None:
-                yield Tick()
             if deadline - s.time < 0.5 * sim.dt:
                 return "time_limit"
+
+    def _film_flight(self, row: int, x: np.ndarray, v: np.ndarray, t: float, end: float) -> Plan:
+        """Put the ball in ``row``, flying in closed form from ``x``, ``v`` at time ``t``, where it
+        is at each frame instant before ``end``, and stop there (a Tick). The flight itself is
+        computed apart, so that filming changes nothing."""
+        assert self.frames is not None
+        s = self.sim.state
+        while (instant := self.frames.next_instant(s.time, TIME_EPSILON)) < end - TIME_EPSILON:
+            s.x[row], s.v[row] = flight.advance(x, v, instant - t, self.ground)
+            s.time = instant
+            yield Tick()
+
+    def _film_miss(self, row: int, t_limit: float) -> Plan:
+        """Film a missed ball's closed-form flight on until MISS_FILMED_AFTER_LANDING after it
+        first lands (or ``t_limit``); then put the ball and the time back as decided."""
+        s = self.sim.state
+        kept = s.x[row].copy(), s.v[row].copy(), s.time
+        end = min(t_limit, s.time + flight.ground_time(s.x[row], s.v[row], self.ground) + MISS_FILMED_AFTER_LANDING)
+        yield from self._film_flight(row, *kept, end)
+        s.x[row], s.v[row], s.time = kept
 
     def _potential_without(self, row: int, energy: Any) -> float:
         """Potential energy of everything but the ball in ``row`` (``energy``: the current one)."""
