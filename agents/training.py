@@ -7,17 +7,19 @@ model is present).
 from __future__ import annotations
 
 import time
-import warnings
 from pathlib import Path
 
+import numpy as np
 from stable_baselines3 import PPO
-from stable_baselines3.common.callbacks import BaseCallback, CallbackList, EvalCallback
+from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.env_util import make_vec_env
-from stable_baselines3.common.monitor import Monitor
 from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv
 
+from agents.evaluation import evaluate
 from agents.hyperparams import ENV_KWARGS, POLICY, PPO_PARAMS  # from agents/hyperparams/ppo.yml
 from netgym.envs import NetCatchEnv
+
+EVAL_SEED = 20_000   # evaluation episodes during training use seeds 20000, 20001, ... (not the final test's)
 
 
 def make_training_env(n_envs: int, seed: int) -> VecEnv:
@@ -28,79 +30,101 @@ def make_training_env(n_envs: int, seed: int) -> VecEnv:
                         env_kwargs=dict(ENV_KWARGS))
 
 
+Point = tuple[int, float, float]
+"""A point of a learning curve: (environment steps, capture rate, wall seconds of training)."""
+
+
 class CaptureCurve(BaseCallback):
-    """After each evaluation: record the capture rate (mean sparse return / balls per episode)
-    against environment steps, and stop once the wall-clock budget is spent."""
+    """Evaluate the deterministic policy on the same seeded episodes at the start, every
+    ``eval_every`` environment steps and at the end; record (steps, capture rate, wall seconds
+    of training, evaluations excluded), save the best model, stop when the wall-clock budget
+    is spent."""
 
-    def __init__(self, balls_per_episode: int, budget_s: float) -> None:
+    def __init__(self, eval_every: int, episodes: int, budget_s: float, best_path: Path, seed: int = EVAL_SEED) -> None:
         super().__init__()
-        self.balls = balls_per_episode
-        self.budget_s, self.start = budget_s, time.perf_counter()
-        self.points: list[tuple[int, float, float]] = []
+        self.eval_every, self.episodes, self.budget_s = eval_every, episodes, budget_s
+        self.best_path, self.seed = best_path, seed
+        self.points: list[Point] = []
+        self._best = -1.0
+        self._spent = 0.0          # wall seconds of training so far, evaluations excluded
+        self._resumed = 0.0
+        self._next = 0
 
-    def _on_step(self) -> bool:
-        assert isinstance(self.parent, EvalCallback)
-        rate = self.parent.last_mean_reward / self.balls
-        elapsed = time.perf_counter() - self.start
-        self.points.append((self.num_timesteps, rate, elapsed))
+    def _evaluate(self) -> None:
+        self._spent += time.perf_counter() - self._resumed
+        rate = evaluate(self.model, self.episodes, seed=self.seed, **ENV_KWARGS).rate  # captures, whatever the reward
+        self.points.append((self.num_timesteps, rate, self._spent))
         self.logger.record("eval/capture_rate", rate)
-        return True
+        if rate > self._best:
+            self._best = rate
+            self.model.save(self.best_path)
+        self._next = self.num_timesteps + self.eval_every
+        self._resumed = time.perf_counter()
 
-    def out_of_time(self) -> bool:
-        """True once the wall-clock budget is spent."""
-        return time.perf_counter() - self.start > self.budget_s
-
-
-class WallClockStop(BaseCallback):
-    """Stops training when its :class:`CaptureCurve` says the budget is spent."""
-
-    def __init__(self, curve: CaptureCurve) -> None:
-        super().__init__()
-        self.curve = curve
+    def _on_training_start(self) -> None:
+        self._resumed = time.perf_counter()
+        self._evaluate()
 
     def _on_step(self) -> bool:
-        return not self.curve.out_of_time()
+        if self.num_timesteps >= self._next:
+            self._evaluate()
+        return self._spent + time.perf_counter() - self._resumed < self.budget_s
+
+    def _on_training_end(self) -> None:
+        if self.points[-1][0] != self.num_timesteps:
+            self._evaluate()
 
 
-def plot_curve(points: list[tuple[int, float, float]], oracle: float, random: float, path: Path) -> None:
-    """Capture rate against environment steps, with the oracle and random rates."""
+def plot_curves(curves: list[list[Point]], oracle: float, random: float, path: Path) -> None:
+    """Capture rate against environment steps and against wall-clock minutes: each seed's
+    curve, their mean and min-max spread (several seeds), the oracle and random rates."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    steps = [p[0] for p in points]
-    fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    ax.plot(steps, [100 * p[1] for p in points], marker="o", label="PPO (deterministic policy)")
-    ax.axhline(100 * oracle, color="green", linestyle="--", label=f"ballistic oracle ({100 * oracle:.0f}%)")
-    ax.axhline(100 * random, color="gray", linestyle=":", label=f"random ({100 * random:.0f}%)")
-    ax.set_xlabel("environment steps (throws)")
-    ax.set_ylabel("capture rate (%)")
-    ax.set_ylim(0, 105)
-    ax.set_title("PPO on NetCatch-v0 (basket)")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="lower right")
+    fig, axes = plt.subplots(1, 2, figsize=(10.0, 4.0), sharey=True)
+    for ax, column, label in ((axes[0], 0, "environment steps (throws)"), (axes[1], 2, "wall-clock minutes of training")):
+        scale = 1.0 if column == 0 else 1.0 / 60.0
+        for k, points in enumerate(curves):
+            ax.plot([p[column] * scale for p in points], [100 * p[1] for p in points], marker="o", markersize=3,
+                    alpha=0.5 if len(curves) > 1 else 1.0, label=f"PPO seed {k}" if len(curves) > 1 else "PPO")
+        if len(curves) > 1 and column == 0:
+            grid, mean, low, high = _spread(curves)
+            ax.plot(grid, mean, color="black", label=f"mean of {len(curves)} seeds")
+            ax.fill_between(grid, low, high, color="gray", alpha=0.25, label="min-max over seeds")
+        ax.axhline(100 * oracle, color="green", linestyle="--", label=f"ballistic oracle ({100 * oracle:.0f}%)")
+        ax.axhline(100 * random, color="gray", linestyle=":", label=f"random ({100 * random:.0f}%)")
+        ax.set_xlabel(label)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("capture rate (%), deterministic policy")
+    axes[0].set_ylim(0, 105)
+    axes[0].legend(loc="lower right", fontsize=8)
+    fig.suptitle("PPO on NetCatch-v0 (basket)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
 
+def _spread(curves: list[list[Point]]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Mean, min and max capture rate (%) of several curves on the steps they all reached."""
+    last = min(points[-1][0] for points in curves)
+    grid = np.linspace(0, last, 50)
+    rates = np.array([np.interp(grid, [p[0] for p in points], [100 * p[1] for p in points]) for points in curves])
+    return grid, rates.mean(axis=0), rates.min(axis=0), rates.max(axis=0)
+
+
 def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8,
-          eval_every: int = 4096, eval_episodes: int = 40, seed: int = 0) -> tuple[PPO, list[tuple[int, float, float]]]:
+          eval_every: int = 4096, eval_episodes: int = 40, seed: int = 0,
+          progress_bar: bool = True) -> tuple[PPO, list[Point]]:
     """Train PPO within a wall-clock budget; saves ``model.zip`` and ``best_model.zip`` in
     ``out`` and logs to TensorBoard under ``out/tb``. Returns the model and its capture curve
-    (environment steps, capture rate, wall seconds)."""
+    (from step 0 to the end; see :class:`CaptureCurve`). ``progress_bar``: SB3's, with ETA."""
     out.mkdir(parents=True, exist_ok=True)
-    warnings.filterwarnings("ignore", message="Training and eval env are not of the same type")
     env = make_training_env(n_envs, seed)
-    eval_env = Monitor(NetCatchEnv())
-    curve = CaptureCurve(eval_env.unwrapped.balls_per_episode, 60.0 * minutes)
-    eval_callback = EvalCallback(eval_env, n_eval_episodes=eval_episodes, deterministic=True,
-                                 eval_freq=max(1, eval_every // n_envs), best_model_save_path=str(out),
-                                 callback_after_eval=curve, verbose=0)
+    curve = CaptureCurve(eval_every, eval_episodes, 60.0 * minutes, out / "best_model")
     model = PPO(POLICY, env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
-    model.learn(timesteps, callback=CallbackList([eval_callback, WallClockStop(curve)]))
+    model.learn(timesteps, callback=curve, progress_bar=progress_bar)
     model.save(out / "model")
     env.close()
-    eval_env.close()
     return model, curve.points

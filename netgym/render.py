@@ -1,7 +1,10 @@
 """Rendering: frames of the net, poles, balls and ground from a fixed perspective camera.
 
 A small NumPy rasteriser with a depth buffer (no GPU, no extra dependency): net strings as
-lines, poles as thick lines, balls as shaded discs, the ground as a checkerboard. ``human``
+lines shaded by depth (nearer strings brighter, so the box reads in 3D), poles as thick lines,
+balls as shaded discs, the ground as a checkerboard; anti-aliased by supersampling (the frame
+is drawn at ``supersample`` times the size and averaged down; about 25 ms a 480 x 360 frame at
+the default 2, 5 ms at 1). ``human``
 mode shows the frames in a pygame window (optional extra ``render``; headless with
 ``SDL_VIDEODRIVER=dummy``).
 """
@@ -18,8 +21,9 @@ SKY_TOP = np.array([150, 190, 235], dtype=np.float64)
 SKY_LOW = np.array([215, 230, 245], dtype=np.float64)
 GROUND_A = np.array([96, 150, 88], dtype=np.float64)
 GROUND_B = np.array([86, 138, 80], dtype=np.float64)
-NET = np.array([245, 245, 245], dtype=np.uint8)
-POLE = np.array([200, 40, 40], dtype=np.uint8)
+NET = np.array([245, 245, 245], dtype=np.float64)
+NET_FAR_SHADE = 0.55          # brightness of the farthest net string relative to the nearest
+POLE = np.array([200, 40, 40], dtype=np.float64)
 BALL = np.array([240, 140, 30], dtype=np.float64)
 
 
@@ -87,8 +91,12 @@ def _background(camera: Camera) -> np.ndarray:
 class Renderer:
     """Draws frames of a simulator's scene; optionally shows them in a pygame window."""
 
-    def __init__(self, sim: Simulator, width: int = 480, height: int = 360, human: bool = False, fps: int = 30) -> None:
-        self.camera = scene_camera(sim, width, height)
+    def __init__(self, sim: Simulator, width: int = 480, height: int = 360, human: bool = False, fps: int = 30,
+                 supersample: int = 2) -> None:
+        if not isinstance(supersample, int) or not 1 <= supersample <= 4:
+            raise ValueError(f"supersample = {supersample!r}; allowed: an integer in [1, 4]")
+        self.supersample = supersample
+        self.camera = scene_camera(sim, width * supersample, height * supersample)
         self.background = _background(self.camera)
         self.human, self.fps = human, fps
         self._window = None
@@ -137,12 +145,14 @@ class Renderer:
 
     def draw(self, sim: Simulator) -> np.ndarray:
         """An (H, W, 3) uint8 frame of the simulator's current state."""
-        x, m = sim.state.x, sim.model
-        fragments = [
-            self._line_fragments(x[m.segments[:, 0]], x[m.segments[:, 1]], NET, 1),
-            self._line_fragments(m.poles[:, :3], m.poles[:, 3:6], POLE, 3),
-            self._ball_fragments(x[m.n_net:], m.ball_radius),
-        ]
+        x, m, k = sim.state.x, sim.model, self.supersample
+        net = self._line_fragments(x[m.segments[:, 0]], x[m.segments[:, 1]], NET, 1)
+        if net is not None:
+            depth = net[2]
+            far = (depth - depth.min()) / max(float(np.ptp(depth)), 1e-9)
+            net = (*net[:3], NET * (1.0 - (1.0 - NET_FAR_SHADE) * far)[:, None])
+        fragments = [net, self._line_fragments(m.poles[:, :3], m.poles[:, 3:6], POLE, 2 * k),
+                     self._ball_fragments(x[m.n_net:], m.ball_radius)]
         image = self.background.copy()
         parts = [f for f in fragments if f is not None]
         if parts:
@@ -151,7 +161,10 @@ class Renderer:
             visible = (ix >= 0) & (ix < self.camera.width) & (iy >= 0) & (iy < self.camera.height)
             order = np.argsort(-depth[visible], kind="stable")  # far first: nearer fragments overwrite
             image[iy[visible][order], ix[visible][order]] = colour[visible][order].astype(np.uint8)
-        return image
+        if k == 1:
+            return image
+        total = sum(image[i::k, j::k].astype(np.uint16) for i in range(k) for j in range(k))
+        return ((total + k * k // 2) // (k * k)).astype(np.uint8)
 
     def show(self, frame: np.ndarray) -> None:
         """Show a frame in the pygame window (human mode), at most ``fps`` frames per second."""

@@ -4,15 +4,19 @@ The training environments are SB3's ``make_vec_env`` with ``SubprocVecEnv`` (one
 environment). Training uses the documented ``shaped`` reward; evaluation counts captures on the
 sparse reward. Writes, under ``--out``:
 
-- ``model.zip``: the final model; ``best_model.zip``: the best evaluated one;
-- ``curve.csv`` and ``learning_curve.png``: capture rate against environment steps, with
-  the ballistic oracle's and the random policy's rates as reference lines;
+- ``model.zip``: the final model; ``best_model.zip``: the best evaluated one (with several
+  ``--seeds``, under ``seed_<k>/`` for each);
+- ``curve.csv`` and ``learning_curve.png``: capture rate, evaluated at step 0, every
+  ``--eval-every`` steps and at the end, against environment steps and wall-clock minutes (with
+  several seeds: each curve, their mean and spread), with the ballistic oracle's and the random
+  policy's rates as reference lines;
 - TensorBoard logs under ``tb/``.
 
 Usage::
 
-    python scripts/train_ppo.py --minutes 20 --out runs/ppo     # full run
-    python scripts/train_ppo.py --quick --out /tmp/ppo          # seconds, for CI
+    python scripts/train_ppo.py --minutes 20 --out runs/ppo                 # full run
+    python scripts/train_ppo.py --minutes 6 --seeds 0 1 2 --out runs/seeds  # several seeds, one after another
+    python scripts/train_ppo.py --quick --out /tmp/ppo                      # seconds, for CI
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ from pathlib import Path
 
 from agents.evaluation import evaluate
 from agents.policies import load_policy
-from agents.training import plot_curve, train
+from agents.training import plot_curves, train
 
 
 def main() -> None:
@@ -35,27 +39,32 @@ def main() -> None:
     parser.add_argument("--n-envs", type=int, default=8)
     parser.add_argument("--eval-every", type=int, default=4096, help="environment steps between evaluations")
     parser.add_argument("--eval-episodes", type=int, default=40)
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seeds", type=int, nargs="+", default=[0], help="one run per seed, one after another")
     parser.add_argument("--quick", action="store_true", help="tiny budget for smoke tests")
     args = parser.parse_args()
     if args.quick:
         args.timesteps, args.n_envs, args.eval_every, args.eval_episodes = 256, 2, 128, 2
-    model, points = train(args.out, args.minutes, args.timesteps, args.n_envs, args.eval_every,
-                          args.eval_episodes, args.seed)
+    curves, models = [], []
+    for seed in args.seeds:
+        out = args.out if len(args.seeds) == 1 else args.out / f"seed_{seed}"
+        print(f"seed {seed}: training for up to {args.minutes:g} min or {args.timesteps} steps ...")
+        model, points = train(out, args.minutes, args.timesteps, args.n_envs, args.eval_every, args.eval_episodes,
+                              seed, progress_bar=True)
+        curves.append(points)
+        models.append(model)
+        print(f"seed {seed}: trained {model.num_timesteps} steps in {points[-1][2] / 60:.1f} min of training; "
+              f"evaluations {', '.join(f'{100 * p[1]:.0f}%' for p in points)}; best {100 * max(p[1] for p in points):.1f}%")
     episodes = 4 if args.quick else 100
-    final = evaluate(model, episodes, seed=10_000)
     oracle = evaluate(load_policy("oracle"), episodes, seed=10_000)
     random = evaluate(load_policy("random"), episodes, seed=10_000)
     with open(args.out / "curve.csv", "w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(["env_steps", "capture_rate", "wall_seconds"])
-        writer.writerows(points)
-    plot_curve(points or [(model.num_timesteps, final.rate, 0.0)], oracle.rate, random.rate,
-               args.out / "learning_curve.png")
-    minutes = (points[-1][2] if points else 0.0) / 60
-    print(f"trained {model.num_timesteps} steps in about {minutes:.1f} min; wrote {args.out / 'model.zip'}")
-    print(f"capture rate over {episodes} episodes: PPO {final}; oracle {oracle}; random {random}")
-    print(f"best evaluation during training: {100 * max((p[1] for p in points), default=0.0):.1f}%")
+        writer.writerow(["seed", "env_steps", "capture_rate", "wall_seconds"])
+        writer.writerows((seed, *p) for seed, points in zip(args.seeds, curves) for p in points)
+    plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png")
+    for seed, model in zip(args.seeds, models):
+        print(f"seed {seed}: capture rate over {episodes} test episodes: PPO {evaluate(model, episodes, seed=10_000)}")
+    print(f"oracle {oracle}; random {random}; wrote {args.out / 'learning_curve.png'}")
 
 
 if __name__ == "__main__":

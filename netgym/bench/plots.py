@@ -6,6 +6,8 @@ from pathlib import Path
 
 from netgym.bench.settings import DEFAULT, REFERENCE, SWEEPS
 
+OUTCOME_TARGET = 0.995   # outcome agreement a setting must reach to be drawn green
+
 
 def plot_work_precision(rows: list[dict], path: Path) -> None:
     """Log-log error against wall time per simulated second, one line per integrator."""
@@ -14,16 +16,19 @@ def plot_work_precision(rows: list[dict], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
     for integrator in SWEEPS:
         runs = [r for r in rows if r["integrator"] == integrator and not r["diverged"]]
         for ax, key in zip(axes, ("ball_error", "net_error")):
-            ax.loglog([r["wall_per_sim_s"] for r in runs], [r[key] for r in runs], marker="o", label=integrator)
-            for r in runs:
-                ax.annotate(f"{r['dt'] * 1e3:g} ms", (r["wall_per_sim_s"], r[key]), fontsize=7,
-                            textcoords="offset points", xytext=(3, 3))
+            line, = ax.loglog([r["wall_per_sim_s"] for r in runs], [r[key] for r in runs], marker="o", label=integrator)
+            for k, r in enumerate(runs):  # labels alternate above and below the line, in its colour
+                ax.annotate(f"{r['dt'] * 1e3:g}", (r["wall_per_sim_s"], r[key]), fontsize=7, color=line.get_color(),
+                            textcoords="offset points", xytext=(4, 4) if k % 2 == 0 else (4, -10))
+            default = [r for r in runs if (r["integrator"], r["dt"]) == DEFAULT]
+            ax.scatter([r["wall_per_sim_s"] for r in default], [r[key] for r in default], s=180, facecolors="none",
+                       edgecolors="red", linewidths=1.5, label="default" if default else None, zorder=3)
     for ax, title in zip(axes, ("RMS ball position error over the strike", "RMS net position error at the end")):
-        ax.set_xlabel("wall seconds per simulated second (one core)")
+        ax.set_xlabel("wall seconds per simulated second (one core); labels: dt in ms")
         ax.set_ylabel("error (m)")
         ax.set_title(title, fontsize=10)
         ax.grid(alpha=0.3, which="both")
@@ -36,26 +41,36 @@ def plot_work_precision(rows: list[dict], path: Path) -> None:
 
 
 def plot_outcomes(rows: list[dict], path: Path) -> None:
-    """Outcome agreement against throws per second, default marked."""
+    """Outcome agreement and throws per second: one row per integrator (so that settings of equal
+    speed do not overprint), each point labelled with its dt and agreement, default ringed."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for integrator in SWEEPS:
+    fig, axes = plt.subplots(len(SWEEPS), 1, figsize=(7.5, 1.0 + 1.0 * len(SWEEPS)), sharex=True)
+    for ax, integrator in zip(axes, SWEEPS):
         runs = [r for r in rows if r["integrator"] == integrator]
-        ax.semilogx([r["throws_per_s"] for r in runs], [100 * r["agreement"] for r in runs], marker="o", label=integrator)
-        for r in runs:
-            ax.annotate(f"{r['dt'] * 1e3:g} ms", (r["throws_per_s"], 100 * r["agreement"]), fontsize=7,
-                        textcoords="offset points", xytext=(3, -9))
-    default = next(r for r in rows if (r["integrator"], r["dt"]) == DEFAULT)
-    ax.scatter([default["throws_per_s"]], [100 * default["agreement"]], s=160, facecolors="none", edgecolors="red",
-               label="default")
-    ax.set_xlabel("throws per second (one core, fast path)")
-    ax.set_ylabel("outcome agreement with the reference (%)")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+        speeds = [r["throws_per_s"] for r in runs]
+        colours = ["tab:green" if r["agreement"] >= OUTCOME_TARGET else "tab:red" for r in runs]
+        ax.scatter(speeds, [0.0] * len(runs), c=colours, s=36, zorder=3)
+        ax.plot(speeds, [0.0] * len(runs), color="gray", linewidth=0.8)
+        for k, r in enumerate(runs):
+            ax.annotate(f"{r['dt'] * 1e3:g} ms: {100 * r['agreement']:.1f}%", (r["throws_per_s"], 0.0), fontsize=7,
+                        ha="center", textcoords="offset points", xytext=(0, 7) if k % 2 == 0 else (0, -15))
+            if (r["integrator"], r["dt"]) == DEFAULT:
+                ax.scatter([r["throws_per_s"]], [0.0], s=200, facecolors="none", edgecolors="red", linewidths=1.5,
+                           zorder=4)
+        ax.set_xscale("log")
+        ax.set_ylim(-1.0, 1.0)
+        ax.set_yticks([])
+        ax.set_ylabel(integrator, rotation=0, ha="right", va="center", fontsize=9)
+        ax.grid(alpha=0.3, which="both", axis="x")
+    speeds = [r["throws_per_s"] for r in rows]
+    axes[-1].set_xlim(min(speeds) / 1.6, max(speeds) * 1.6)  # room for the end points' labels
+    axes[-1].set_xlabel("throws per second (one core, fast path)")
+    axes[0].set_title(f"Outcome agreement with the reference per setting (green: >= {100 * OUTCOME_TARGET:g}%, "
+                      "red ring: the default)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
