@@ -1,13 +1,19 @@
 """Train PPO on NetCatch-v0 with Ray RLlib: the path for users who outgrow one machine.
 
-The environment is registered with ``register_env`` and sampled by RLlib env runners (one
-process each; on a cluster, ``ray.init(address="auto")`` spreads them over machines).
-Requires the ``rllib`` extra: ``pip install -e ".[rllib]"``.
+The environment is registered with ``register_env`` and sampled by ``--env-runners`` RLlib env
+runners, one process each, in parallel. Requires the ``rllib`` extra: ``pip install -e ".[rllib]"``.
+
+On a Ray cluster the same script spreads the env runners over the machines: install netgym on
+every node (the same ``pip install -e ".[rllib]"``), start the cluster (``ray start --head`` on
+one node, ``ray start --address=HEAD_IP:6379`` on the others, or a cluster launcher), then run
+the script on a node of the cluster with ``--address auto`` and as many ``--env-runners`` as
+the cluster has CPUs to spare (one learner CPU stays on the head).
 
 Usage::
 
-    python scripts/train_rllib.py --iterations 50 --env-runners 2     # a real run
-    python scripts/train_rllib.py --quick                             # tiny smoke test
+    python scripts/train_rllib.py --iterations 50 --env-runners 2           # this machine
+    python scripts/train_rllib.py --address auto --env-runners 64           # a running Ray cluster
+    python scripts/train_rllib.py --quick                                   # smoke test: 2 env runners
 """
 
 from __future__ import annotations
@@ -51,20 +57,27 @@ def main() -> None:
     parser.add_argument("--iterations", type=int, default=50)
     parser.add_argument("--env-runners", type=int, default=2)
     parser.add_argument("--batch", type=int, default=1024)
+    parser.add_argument("--address", default=None,
+                        help="a running Ray cluster to join ('auto': the one this node belongs to); default: a local Ray")
     parser.add_argument("--out", type=Path, default=Path("runs/rllib"))
     parser.add_argument("--quick", action="store_true", help="one tiny iteration, for smoke tests")
     args = parser.parse_args()
     if args.quick:
-        args.iterations, args.env_runners, args.batch = 1, 1, 64
+        args.iterations, args.env_runners, args.batch = 1, 2, 64
     NetCatchEnv()  # compile the numba kernels once, before the env runner processes start
-    ray.init(num_cpus=max(2, args.env_runners + 1), include_dashboard=False, log_to_driver=False)
+    if args.address is None:
+        ray.init(num_cpus=args.env_runners + 1, include_dashboard=False, log_to_driver=False)
+    else:
+        ray.init(address=args.address, log_to_driver=False)
+    print(f"Ray: {ray.cluster_resources().get('CPU', 0):g} CPUs; {args.env_runners} env runners")
     try:
         algo = build(args.env_runners, args.batch, min(args.batch, 256), 2 if args.quick else PPO_PARAMS["n_epochs"])
         for i in range(args.iterations):
             result = algo.train()
             runners = result.get("env_runners", {})
             print(f"iteration {i + 1}: env steps {runners.get('num_env_steps_sampled_lifetime')}, "
-                  f"mean episode return {runners.get('episode_return_mean')}")
+                  f"mean episode return {runners.get('episode_return_mean')}, "
+                  f"env runners healthy {algo.env_runner_group.num_healthy_remote_workers()}")
         path = algo.save(str(args.out.resolve()))
         print(f"checkpoint: {getattr(path, 'checkpoint', path)}")
         algo.stop()

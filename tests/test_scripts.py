@@ -67,6 +67,7 @@ def test_train_rllib_quick_runs_one_iteration(tmp_path) -> None:
     pytest.importorskip("ray.rllib", reason="the rllib extra is not installed")
     out = _run("scripts/train_rllib.py", "--quick", "--out", str(tmp_path / "rllib"))
     assert "iteration 1:" in out and "checkpoint" in out
+    assert "env runners healthy 2" in out  # the smoke test samples with two env runner processes
 
 
 def test_report_quick_covers_every_section() -> None:
