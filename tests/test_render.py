@@ -121,3 +121,31 @@ def test_frames_are_one_period_apart() -> None:
         assert np.array_equal(k, np.arange(len(k)))                    # every instant once, from the launch
         assert np.abs(times - k / 30.0).max() <= 0.5 * sim.dt + 1e-9
         assert len(k) >= math.floor(result.time * 30.0)
+
+
+def test_recorded_episode_video_holds_every_throw_at_render_fps(tmp_path) -> None:
+    """RecordEpisodeVideo writes an MP4 per episode with every frame of every throw: its length
+    is at least the simulated time of the throws at render_fps, played at render_fps."""
+    imageio = pytest.importorskip("imageio.v2")
+    from netgym.wrappers import RecordEpisodeVideo
+
+    env = RecordEpisodeVideo(gym.make("NetCatch-v0", render_mode="rgb_array_list"), tmp_path,
+                             episode_trigger=lambda episode: episode == 1)
+    oracle = BallisticOracle(env.unwrapped.scene)
+    simulated = []
+    for episode in range(2):
+        obs, _ = env.reset(seed=episode)
+        done = False
+        while not done:
+            obs, _, terminated, truncated, info = env.step(oracle.predict(obs)[0])
+            if episode == 1:
+                simulated.append(info["sim_time"])
+            done = terminated or truncated
+    assert [p.name for p in env.written] == ["netcatch-episode-1.mp4"]   # the trigger picked episode 1 only
+    reader = imageio.get_reader(env.written[0])
+    frames = [frame for frame in reader]
+    fps = NetCatchEnv.metadata["render_fps"]
+    assert reader.get_meta_data()["fps"] == fps
+    assert len(frames) >= 1 + sum(math.floor(t * fps) + 1 for t in simulated)
+    assert frames[0].shape == (360, 480, 3)
+    env.close()

@@ -8,6 +8,8 @@ import math
 import platform
 from dataclasses import dataclass
 
+from tqdm import tqdm
+
 from netgym.bench import episodes, sim_throughput
 from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import compare, summarise
@@ -36,19 +38,26 @@ class Report:
 
 def measure(quick: bool, count: int) -> Report:
     """Run every section (small sweeps and few throws with ``quick``); ``count`` throws for the
-    outcome-accuracy section."""
-    wp, _ = work_precision(quick)
-    outcome_rows = outcome_accuracy(count)
-    stability = stability_limits(quick)
-    peer_rows = peers(quick)
-    sim_table = sim_throughput.to_markdown(sim_throughput.run(quick))
-    summaries = {scene: summarise(compare(scene, sample_throws(scene, 6 if quick else 300), 1))
-                 for scene in ("basket", "goal")}
-    vector_envs = env_throughput(8, 2 if quick else 30)
-    episode_rows = [episodes.run_episodes(scene, policy, 2 if quick else 60, 3)
-                    for scene, policy in (("basket", "oracle"), ("basket", "random"), ("goal", "oracle"))]
-    return Report(count, wp, outcome_rows, stability, peer_rows, sim_table, summaries, vector_envs,
-                  episodes.to_markdown(episode_rows))
+    outcome-accuracy section. A progress bar on stderr counts the sections."""
+    sections = {
+        "work-precision": lambda: work_precision(quick)[0],
+        "outcome accuracy": lambda: outcome_accuracy(count),
+        "stability limits": lambda: stability_limits(quick),
+        "peers": lambda: peers(quick),
+        "simulator throughput": lambda: sim_throughput.to_markdown(sim_throughput.run(quick)),
+        "fast path": lambda: {scene: summarise(compare(scene, sample_throws(scene, 6 if quick else 300), 1))
+                              for scene in ("basket", "goal")},
+        "vector environments": lambda: env_throughput(8, 2 if quick else 30),
+        "episodes": lambda: episodes.to_markdown([
+            episodes.run_episodes(scene, policy, 2 if quick else 60, 3)
+            for scene, policy in (("basket", "oracle"), ("basket", "random"), ("goal", "oracle"))]),
+    }
+    results = []
+    with tqdm(sections.items(), desc="report", unit="section") as bar:
+        for name, run in bar:
+            bar.set_postfix_str(name)
+            results.append(run())
+    return Report(count, *results)
 
 
 def _env_table(report: Report) -> str:

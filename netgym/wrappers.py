@@ -1,0 +1,60 @@
+"""Wrappers for NetCatch environments."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from netgym.video import write_video
+
+
+class RecordEpisodeVideo(gym.Wrapper):
+    """Write a video of every episode ``episode_trigger(episode_index)`` selects (default: all),
+    with every frame of every throw: NetCatch's ``rgb_array_list`` frames, ``1 / render_fps``
+    simulated seconds apart, so the video plays at the simulation's pace.
+
+    Gymnasium's ``RecordVideo`` keeps one frame per step, and a NetCatch step is a whole throw;
+    this wrapper keeps them all. Videos go to ``video_folder/{name_prefix}-episode-{i}.mp4``
+    (``video_format="gif"`` for GIFs), written when the episode ends.
+
+    :param env: an env made with ``render_mode="rgb_array_list"``.
+    """
+
+    def __init__(self, env: gym.Env, video_folder: str | Path, episode_trigger: Callable[[int], bool] | None = None,
+                 name_prefix: str = "netcatch", video_format: str = "mp4") -> None:
+        super().__init__(env)
+        if env.render_mode != "rgb_array_list":
+            raise ValueError(f"RecordEpisodeVideo needs render_mode='rgb_array_list', got {env.render_mode!r}")
+        if video_format not in ("mp4", "gif"):
+            raise ValueError(f"video_format = {video_format!r}; allowed: 'mp4' or 'gif'")
+        self.video_folder = Path(video_folder)
+        self.episode_trigger = episode_trigger or (lambda episode: True)
+        self.name_prefix, self.video_format = name_prefix, video_format
+        self.episode = -1
+        self.written: list[Path] = []
+        self._frames: list[np.ndarray] | None = None
+
+    def reset(self, **kwargs: Any) -> tuple[Any, dict]:
+        """Reset; start collecting frames if this episode is to be recorded."""
+        obs, info = self.env.reset(**kwargs)
+        self.episode += 1
+        self._frames = list(self.env.render()) if self.episode_trigger(self.episode) else None
+        if self._frames is None:
+            self.env.render()  # hand out (and drop) the reset frame
+        return obs, info
+
+    def step(self, action: Any) -> tuple[Any, float, bool, bool, dict]:
+        """Step; keep the throw's frames; write the video when the episode ends."""
+        obs, reward, terminated, truncated, info = self.env.step(action)
+        frames = self.env.render()
+        if self._frames is not None:
+            self._frames += frames
+            if terminated or truncated:
+                path = self.video_folder / f"{self.name_prefix}-episode-{self.episode}.{self.video_format}"
+                self.written.append(write_video(self._frames, path, self.env.metadata["render_fps"]))
+                self._frames = None
+        return obs, reward, terminated, truncated, info
