@@ -29,9 +29,11 @@ MAX_SPRING_RATE = 2e9          # spring evaluations per simulated second: ~15 s 
 SPRINGS_PER_PARTICLE = 6       # structural, shear and bending: at most two of each per particle
 
 
-def _num(lo: float, hi: float, *, lo_open: bool = False, hi_open: bool = False) -> Any:
-    """A dataclass field whose value (or each element) must lie in ``lo..hi``."""
-    return field(metadata={"range": (lo, hi, lo_open, hi_open)})
+def _num(lo: float, hi: float, *, lo_open: bool = False, hi_open: bool = False,
+         default: Any = dataclasses.MISSING) -> Any:
+    """A dataclass field whose value (or each element) must lie in ``lo..hi`` (optional in
+    scene files when it has a ``default``)."""
+    return field(default=default, metadata={"range": (lo, hi, lo_open, hi_open)})
 
 
 def _choice(*options: str, default: Any = dataclasses.MISSING) -> Any:
@@ -146,6 +148,18 @@ class ThrowConfig:
 
 
 @dataclass(frozen=True)
+class AirConfig:
+    """Air acting on balls (optional table ``[air]``; by default there is none): quadratic drag
+    ``0.5 * density * drag_coefficient * pi * radius**2 * |v - wind| (v - wind)`` towards the
+    ``wind`` velocity. Air at sea level has a density of 1.2 kg/m^3; a smooth sphere a drag
+    coefficient of about 0.47. The net's own air drag is ``net.drag``."""
+
+    density: float = _num(0.0, 10.0, default=0.0)
+    drag_coefficient: float = _num(0.0, 5.0, default=0.47)
+    wind: tuple[float, float, float] = _num(-100.0, 100.0, default=(0.0, 0.0, 0.0))
+
+
+@dataclass(frozen=True)
 class SceneConfig:
     """A whole scene: the net, its springs, the ball, contacts, simulation and throws.
 
@@ -163,6 +177,7 @@ class SceneConfig:
     simulation: SimulationConfig
     throw: ThrowConfig
     capture_rule: str = _choice(*CAPTURE_RULES, default="held")
+    air: AirConfig = AirConfig()
 
     def replace(self, overrides: Mapping[str, Any]) -> "SceneConfig":
         """Return a validated copy with dotted fields replaced, e.g. ``{"simulation.dt": 5e-4}``."""

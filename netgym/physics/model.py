@@ -7,6 +7,7 @@ the rows after them are balls, in launch order. Kernels work on these flat float
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -16,6 +17,13 @@ from netgym.config import SceneConfig, SimulationConfig
 from netgym.physics.kinds import Contact, Integrator, SpringKind
 from netgym.physics.net import NetGeometry, build_net
 from netgym.physics.opening import Opening
+
+
+def ball_drag_constant(config: SceneConfig) -> float:
+    """``k`` (1/m) of a ball's drag acceleration ``-k |v - wind| (v - wind)``:
+    ``0.5 * density * drag_coefficient * pi * radius**2 / mass``."""
+    air, ball = config.air, config.ball
+    return 0.5 * air.density * air.drag_coefficient * math.pi * ball.radius ** 2 / ball.mass
 
 
 class KernelModel(NamedTuple):
@@ -33,6 +41,8 @@ class KernelModel(NamedTuple):
     drag: float
     ball_radius: float
     opening: np.ndarray
+    ball_drag: float
+    wind: np.ndarray
 
 
 class Settings(NamedTuple):
@@ -80,6 +90,8 @@ class Model:
     ball_mass: float
     opening: Opening
     integrator: Integrator
+    ball_drag: float
+    wind: np.ndarray
 
     @classmethod
     def from_config(cls, config: SceneConfig) -> "Model":
@@ -110,6 +122,8 @@ class Model:
             ball_mass=config.ball.mass,
             opening=geo.opening,
             integrator=Integrator.parse(config.simulation.integrator),
+            ball_drag=ball_drag_constant(config),
+            wind=np.array(config.air.wind, dtype=np.float64),
         )
 
     @functools.cached_property
@@ -117,7 +131,7 @@ class Model:
         """The arrays and constants the kernels need, as one record."""
         return KernelModel(self.n_net, self.springs, self.spring_params, self.segments, self.poles, self.contact,
                            self.restitution_threshold, self.gravity, self.drag, self.ball_radius,
-                           self.opening.kernel_array())
+                           self.opening.kernel_array(), self.ball_drag, self.wind)
 
     @property
     def n_springs(self) -> int:

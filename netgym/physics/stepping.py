@@ -7,6 +7,7 @@ import math
 import numpy as np
 from numba import njit
 
+from netgym.physics.air import rk4_step
 from netgym.physics.contacts import resolve_contacts
 from netgym.physics.integrators import START_SLOT, step_euler, step_imex_euler, step_implicit_euler, step_rk4
 from netgym.physics.kinds import Integrator
@@ -61,11 +62,17 @@ def _net_box(x, n_net, box):
 
 
 @njit(cache=True)
-def _exact_ball_flight(x, v, before, before_v, n_net, gravity, h):
-    """Balls feel only gravity between contacts: give them the exact parabola, whatever the
-    integrator (so a ball's free flight has no time-discretisation error)."""
+def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind):
+    """Balls feel only gravity (and air, when ``ball_drag`` > 0) between contacts: give them
+    their free flight over ``h`` from the substep's start, whatever the integrator: the exact
+    parabola without air (no time-discretisation error), an RK4 step through air."""
     for b in range(before.shape[0]):
         k = n_net + b
+        if ball_drag > 0.0:
+            x[k] = before[b]
+            v[k] = before_v[b]
+            rk4_step(x[k], v[k], h, gravity, ball_drag, wind)
+            continue
         for c in range(3):
             x[k, c] = before[b, c] + h * before_v[b, c]
             v[k, c] = before_v[b, c]
@@ -100,12 +107,12 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     unpacks a :class:`~netgym.physics.model.KernelModel` and its
     :class:`~netgym.physics.model.Settings` for the passes of a step.
 
-    Balls move on their exact free-flight parabola between contacts (net particles feel air
-    drag; balls do not). A step is split into equal substeps when a ball could otherwise move
+    Balls move on their exact free-flight parabola between contacts, or through air (RK4) when
+    the scene has some (net particles feel linear air drag). A step is split into equal substeps when a ball could otherwise move
     more than ``max_travel * radius`` relative to the net particles near it in one. Each substep:
 
     1. the smooth forces (springs, dampers, gravity, drag) with the chosen integrator;
-    2. the balls' exact parabola over the substep;
+    2. the balls' free flight over the substep;
     3. contacts, in one deterministic pass;
     4. the balls' ``entered`` flags (crossings of the opening).
 
@@ -150,7 +157,7 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
                     x, v, inv_mass, gravity, drag, springs, params, h, settings.cg_tolerance,
                     settings.cg_max_iterations, work, coef)
             if n_balls > 0:
-                _exact_ball_flight(x, v, before, before_v, n_net, gravity, h)
+                _free_ball_flight(x, v, before, before_v, n_net, gravity, h, model.ball_drag, model.wind)
                 _net_box(x, n_net, box)
             resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.poles, model.contact,
                              model.restitution_threshold, box)

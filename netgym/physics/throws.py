@@ -19,7 +19,7 @@ import numpy as np
 
 from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
-from netgym.physics import contacts, flight, stepping
+from netgym.physics import air, contacts, flight, stepping
 from netgym.physics.frames import FrameClock
 from netgym.physics.kinds import Contact
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, integrate_until_stops
@@ -33,6 +33,7 @@ REST_REACH = 0.2              # m around a ball within which moving bodies keep 
 CLEARANCE = 0.02              # m: closer than this to anything, a ball is simulated, not flown
 AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bounding box
 TIME_EPSILON = 1e-9          # s: instants closer than this are the same
+AIR_PIECE = 0.1              # s: longest piece of a flight through air between two clearance checks
 MISS_FILMED_AFTER_LANDING = 0.5  # s of a missed ball's flight filmed after it first lands
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 
@@ -191,31 +192,64 @@ class Throw:
         return bool(sim.state.entered[ball]) and sim.opening.depth(sim.state.x[row]) >= sim.model.ball_radius
 
     def _fly(self, row: int, ball: int, deadline: float) -> Plan:
-        """Move the ball in closed form while it is clear of everything. Returns a decision
-        reason, or None when the ball came close enough to need simulating."""
+        """Move the ball on its free flight (closed form; through air, RK4) while it is clear of
+        everything. Returns a decision reason, or None when the ball came close enough to need
+        simulating."""
         sim = self.sim
-        s, g, n_net = sim.state, abs(sim.model.gravity), sim.model.n_net
+        s, n_net = sim.state, sim.model.n_net
         _, _, lo, hi = self._survey(row, CLEARANCE)
         while True:
-            if flight.entry_time(s.x[row], s.v[row], lo, hi, self.ground, deadline - s.time) is None:
+            if self._never_enters(row, lo, hi, deadline - s.time):
                 return "flies_away"
             gap = self._clearance(row)
             if gap <= CLEARANCE:
                 return None
-            speed = float(np.linalg.norm(s.v[row]))
-            tau = (gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g))
-            tau = min(tau, deadline - s.time)
+            tau = min(self._safe_time(row, gap), deadline - s.time)
             before = s.x[n_net:].copy()
             start = s.x[row].copy(), s.v[row].copy(), s.time
             if self.frames is not None:
                 yield from self._film_flight(row, *start, start[2] + tau)
-            s.x[row], s.v[row] = flight.advance(start[0], start[1], tau, self.ground)
+            s.x[row], s.v[row] = self._flight(start[0], start[1], tau)
             stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
             s.time = start[2] + tau
             if sim.config.capture_rule == "line" and self._crossed_line(row, ball):
                 return "crossed_line"
             if deadline - s.time < 0.5 * sim.dt:
                 return "time_limit"
+
+    def _flight(self, x: np.ndarray, v: np.ndarray, tau: float) -> tuple[np.ndarray, np.ndarray]:
+        """Where a lone ball starting at ``x``, ``v`` is after ``tau``: closed form without air,
+        RK4 steps through air."""
+        m = self.sim.model
+        if m.ball_drag == 0.0:
+            return flight.advance(x, v, tau, self.ground)
+        p, u = np.array(x, dtype=np.float64), np.array(v, dtype=np.float64)
+        g = self.ground
+        air.fly(p, u, tau, m.gravity, m.ball_drag, m.wind, g.radius, g.restitution, g.friction, g.threshold,
+                air.MAX_FLIGHT_STEP)
+        return p, u
+
+    def _never_enters(self, row: int, lo: np.ndarray, hi: np.ndarray, horizon: float) -> bool:
+        """The ball in ``row`` cannot come into the box ``lo``..``hi`` within ``horizon``: its
+        parabola (with bounces) misses it; through air, it lies outside, held by friction."""
+        s, m, g = self.sim.state, self.sim.model, self.ground
+        p, v = s.x[row], s.v[row]
+        if m.ball_drag == 0.0:
+            return flight.entry_time(p, v, lo, hi, g, horizon) is None
+        outside = bool(np.any(p < lo) or np.any(p > hi))
+        return outside and air.held_by_friction(v, m.gravity, m.ball_drag, m.wind, g.radius, g.friction, p)
+
+    def _safe_time(self, row: int, gap: float) -> float:
+        """A time within which the ball in ``row`` cannot travel ``gap``."""
+        m, v = self.sim.model, self.sim.state.v[row]
+        speed = float(np.linalg.norm(v))
+        if m.ball_drag == 0.0:
+            g = abs(m.gravity)
+        else:  # bound the acceleration over at most AIR_PIECE, with the speed it could gain
+            g0 = air.max_acceleration(speed, m.gravity, m.ball_drag, m.wind)
+            g = air.max_acceleration(speed + g0 * AIR_PIECE, m.gravity, m.ball_drag, m.wind)
+        tau = gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g)
+        return tau if m.ball_drag == 0.0 else min(tau, AIR_PIECE)
 
     def _film_flight(self, row: int, x: np.ndarray, v: np.ndarray, t: float, end: float) -> Plan:
         """Put the ball in ``row``, flying in closed form from ``x``, ``v`` at time ``t``, where it
@@ -224,7 +258,7 @@ class Throw:
         assert self.frames is not None
         s = self.sim.state
         while (instant := self.frames.next_instant(s.time, TIME_EPSILON)) < end - TIME_EPSILON:
-            s.x[row], s.v[row] = flight.advance(x, v, instant - t, self.ground)
+            s.x[row], s.v[row] = self._flight(x, v, instant - t)
             s.time = instant
             yield Tick()
 
@@ -250,10 +284,12 @@ class Throw:
         s, m = sim.state, sim.model
         p = s.x[row]
         outside = bool(np.any(p < lo) or np.any(p > hi))
-        if outside and flight.entry_time(p, s.v[row], lo, hi, self.ground, math.inf) is None:
+        if outside and self._never_enters(row, lo, hi, math.inf):
             return "flies_away"
         if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
             return "at_rest"
+        if m.ball_drag > 0.0 and np.any(m.wind != 0.0):
+            return None  # the wind can feed the ball energy: no energy bound
         energy = sim.energy()  # one evaluation per check: kinetic and potential together
         free = energy.kinetic + max(0.0, self._potential_without(row, energy) - reference_energy)
         reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf

@@ -1,0 +1,128 @@
+"""Air on a ball: quadratic drag towards the wind, and the flight of a lone ball through it.
+
+A ball's acceleration is ``g - k |v - wind| (v - wind)`` with ``k = 0.5 rho C_d A / m`` (see
+:func:`~netgym.physics.model.ball_drag_constant`). Its flight has no closed form, so
+:func:`fly` integrates it with classical RK4 in steps of at most ``max_step`` (the fast path's
+flight; error far below the contacts' own, see ``tests/test_air.py``), with the same ground
+bounce as :mod:`netgym.physics.flight`, and sliding on the ground against Coulomb friction
+with the wind pushing. :func:`rk4_step` is also the balls' free flight inside the kernels.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+MAX_FLIGHT_STEP = 1e-3   # s: longest RK4 step of the fast path's flight through air
+CONTACT_ITERATIONS = 4   # Newton iterations on the time a step meets the ground
+
+
+@njit(cache=True)
+def _acceleration(v0, v1, v2, gravity, k, wind):
+    u0, u1, u2 = v0 - wind[0], v1 - wind[1], v2 - wind[2]
+    speed = math.sqrt(u0 * u0 + u1 * u1 + u2 * u2)
+    return -k * speed * u0, -k * speed * u1, gravity - k * speed * u2
+
+
+@njit(cache=True)
+def rk4_step(p, v, h, gravity, k, wind):
+    """Advance one ball's position ``p`` and velocity ``v`` (3-vectors, in place) by ``h``
+    through air: classical RK4 on ``x' = v, v' = g - k |v - wind| (v - wind)``."""
+    x0, x1, x2, w0, w1, w2 = p[0], p[1], p[2], v[0], v[1], v[2]
+    a0, a1, a2 = _acceleration(w0, w1, w2, gravity, k, wind)
+    b0, b1, b2 = _acceleration(w0 + 0.5 * h * a0, w1 + 0.5 * h * a1, w2 + 0.5 * h * a2, gravity, k, wind)
+    c0, c1, c2 = _acceleration(w0 + 0.5 * h * b0, w1 + 0.5 * h * b1, w2 + 0.5 * h * b2, gravity, k, wind)
+    d0, d1, d2 = _acceleration(w0 + h * c0, w1 + h * c1, w2 + h * c2, gravity, k, wind)
+    p[0] = x0 + h / 6.0 * (w0 + 2.0 * (w0 + 0.5 * h * a0) + 2.0 * (w0 + 0.5 * h * b0) + (w0 + h * c0))
+    p[1] = x1 + h / 6.0 * (w1 + 2.0 * (w1 + 0.5 * h * a1) + 2.0 * (w1 + 0.5 * h * b1) + (w1 + h * c1))
+    p[2] = x2 + h / 6.0 * (w2 + 2.0 * (w2 + 0.5 * h * a2) + 2.0 * (w2 + 0.5 * h * b2) + (w2 + h * c2))
+    v[0] = w0 + h / 6.0 * (a0 + 2.0 * b0 + 2.0 * c0 + d0)
+    v[1] = w1 + h / 6.0 * (a1 + 2.0 * b1 + 2.0 * c1 + d1)
+    v[2] = w2 + h / 6.0 * (a2 + 2.0 * b2 + 2.0 * c2 + d2)
+
+
+@njit(cache=True)
+def _bounce(v, restitution, friction, threshold):
+    """The ground impulse of netgym.physics.flight: restitution above the threshold, Coulomb
+    friction bounded by friction times the normal impulse."""
+    closing = v[2]
+    e = restitution if -closing > threshold else 0.0
+    jn = -(1.0 + e) * closing
+    v[2] = -e * closing
+    slip = math.sqrt(v[0] * v[0] + v[1] * v[1])
+    if slip > 1e-12:
+        scale = 1.0 - min(friction * jn, slip) / slip
+        v[0] *= scale
+        v[1] *= scale
+
+
+@njit(cache=True)
+def _slide_step(v, h, gravity, k, wind, friction):
+    """One explicit step of a ball sliding on the ground: wind drag against Coulomb friction
+    (``friction * |g|``), which stops the ball rather than reverse it."""
+    a0, a1, _ = _acceleration(v[0], v[1], 0.0, 0.0, k, wind)
+    speed = math.sqrt(v[0] * v[0] + v[1] * v[1])
+    grip = friction * -gravity
+    if speed > 1e-12:
+        n0, n1 = v[0] + h * (a0 - grip * v[0] / speed), v[1] + h * (a1 - grip * v[1] / speed)
+        if n0 * v[0] + n1 * v[1] <= 0.0 and math.sqrt(a0 * a0 + a1 * a1) <= grip:
+            n0, n1 = 0.0, 0.0   # friction stops it and holds it
+        v[0], v[1] = n0, n1
+    else:
+        push = math.sqrt(a0 * a0 + a1 * a1)
+        if push > grip:
+            v[0] += h * (a0 - grip * a0 / push)
+            v[1] += h * (a1 - grip * a1 / push)
+        else:
+            v[0], v[1] = 0.0, 0.0
+
+
+@njit(cache=True)
+def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, max_step):
+    """Move a lone ball (``p``, ``v`` 3-vectors, in place) through air for ``tau`` seconds:
+    RK4 steps of at most ``max_step`` while airborne, the ground bounce where its lowest point
+    reaches the ground (the step is cut at the contact), sliding once it no longer bounces."""
+    left = tau
+    while left > 1e-15:
+        h = min(max_step, left)
+        if p[2] <= radius + 1e-12 and abs(v[2]) <= 1e-12:   # on the ground, not bouncing: sliding
+            p[2], v[2] = radius, 0.0
+            _slide_step(v, h, gravity, k, wind, friction)
+            p[0] += h * v[0]
+            p[1] += h * v[1]
+            left -= h
+            continue
+        start_p, start_v = p.copy(), v.copy()
+        rk4_step(p, v, h, gravity, k, wind)
+        if p[2] < radius and v[2] < 0.0:
+            # cut the step where the ball meets the ground (Newton on the height), then bounce
+            cut = h * (start_p[2] - radius) / max(start_p[2] - p[2], 1e-15)
+            for _ in range(CONTACT_ITERATIONS):
+                p[:], v[:] = start_p, start_v
+                rk4_step(p, v, cut, gravity, k, wind)
+                if v[2] >= 0.0:
+                    break
+                cut = min(h, max(0.0, cut - (p[2] - radius) / v[2]))
+            p[:], v[:] = start_p, start_v
+            rk4_step(p, v, cut, gravity, k, wind)
+            p[2] = radius
+            _bounce(v, restitution, friction, threshold)
+            left -= cut
+        else:
+            left -= h
+
+
+@njit(cache=True)
+def held_by_friction(v, gravity, k, wind, radius, friction, p):
+    """True if the ball lies still on the ground and the wind cannot push it past friction."""
+    if p[2] > radius + 1e-9 or abs(v[0]) + abs(v[1]) + abs(v[2]) > 1e-12:
+        return False
+    a0, a1, _ = _acceleration(0.0, 0.0, 0.0, 0.0, k, wind)
+    return math.sqrt(a0 * a0 + a1 * a1) <= friction * -gravity
+
+
+def max_acceleration(speed: float, gravity: float, k: float, wind: np.ndarray) -> float:
+    """A bound on a ball's acceleration while its speed stays below ``speed``."""
+    return abs(gravity) + k * (speed + float(np.linalg.norm(wind))) ** 2
