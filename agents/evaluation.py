@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -48,11 +49,15 @@ def wilson_interval(successes: int, trials: int, z: float = 1.96) -> tuple[float
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
-def evaluate(policy: Policy, episodes: int, seed: int = 0, progress: str | None = None,
-             **env_kwargs: Any) -> CaptureRate:
+def evaluate(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, seed: int = 0,
+             progress: str | None = None, **env_kwargs: Any) -> CaptureRate:
     """Run ``episodes`` episodes seeded ``seed, seed + 1, ...`` and count captured throws;
-    with a ``progress`` label, a progress bar with ETA on stderr."""
+    with a ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also be a
+    function of the env that returns the policy (for one that reads the env, such as
+    :class:`~agents.oracle.InformedOracle`)."""
     env = NetCatchEnv(**env_kwargs)
+    if isinstance(policy, type) or not hasattr(policy, "predict"):
+        policy = policy(env)
     captured = throws = 0
     for episode in tqdm(range(episodes), desc=progress, unit="episode", disable=progress is None, leave=False):
         obs, _ = env.reset(seed=seed + episode)

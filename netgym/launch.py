@@ -57,13 +57,22 @@ def from_range(value: float, bounds: tuple[float, float]) -> float:
     return 0.0 if span == 0.0 else 2.0 * (value - bounds[0]) / span - 1.0
 
 
+def action_to_launch(action: np.ndarray, cfg: ThrowConfig) -> tuple[float, float, float]:
+    """(speed m/s, elevation degrees, azimuth offset degrees) of an action in [-1, 1]^3."""
+    return (to_range(float(action[0]), cfg.speed), to_range(float(action[1]), cfg.elevation),
+            to_range(float(action[2]), cfg.azimuth))
+
+
+def launch_velocity(speed: float, elevation: float, azimuth: float, thrower: Thrower) -> np.ndarray:
+    """Launch velocity (m/s) of a ``speed``, ``elevation`` (degrees above the horizon) and
+    ``azimuth`` offset (degrees, to the left of the direction to the opening's centre)."""
+    theta, phi = math.radians(elevation), thrower.facing + math.radians(azimuth)
+    return speed * np.array([math.cos(theta) * math.cos(phi), math.cos(theta) * math.sin(phi), math.sin(theta)])
+
+
 def action_to_velocity(action: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:
     """Launch velocity (m/s) of an action in [-1, 1]^3 = (speed, elevation, azimuth offset)."""
-    speed = to_range(float(action[0]), cfg.speed)
-    elevation = math.radians(to_range(float(action[1]), cfg.elevation))
-    azimuth = thrower.facing + math.radians(to_range(float(action[2]), cfg.azimuth))
-    return speed * np.array([math.cos(elevation) * math.cos(azimuth),
-                             math.cos(elevation) * math.sin(azimuth), math.sin(elevation)])
+    return launch_velocity(*action_to_launch(action, cfg), thrower)
 
 
 def velocity_to_action(velocity: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:

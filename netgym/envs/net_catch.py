@@ -15,7 +15,9 @@ from gymnasium import spaces
 from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError
-from netgym.launch import Thrower, action_to_velocity, opening_miss_distance, sample_thrower
+from netgym.envs.variation import FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, WindRange, throw_feedback
+from netgym.launch import (Thrower, action_to_launch, action_to_velocity, launch_velocity, opening_miss_distance,
+                           sample_thrower)
 from netgym.physics.frames import FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
@@ -34,17 +36,25 @@ class ObservationIndex(IntEnum):
     CAUGHT = 4          # balls caught so far / balls per episode
     THROWS_LEFT = 5     # throws left / balls per episode
     PILE_HEIGHT = 6     # highest caught ball (or the net's lowest point) minus the opening centre's height (m)
+    LAST_CAUGHT = 7     # feedback=True only: the previous throw was caught (0 or 1; 0 before the first)
+    LAST_OFFSET_U = 8   # feedback: where the previous throw crossed the opening's plane, minus its centre,
+    LAST_OFFSET_W = 9   # along the plane's two axes (m; world x and y for the basket)
+    LAST_SHORT = 10     # feedback: how far short of the opening's plane the previous throw stayed (m)
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
 SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
 
 
-def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float) -> spaces.Box:
-    """The observation bounds of ``scene`` (opening ``centre``, lowest net point ``floor``)."""
+def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float, feedback: bool) -> spaces.Box:
+    """The observation bounds of ``scene`` (opening ``centre``, lowest net point ``floor``),
+    with the feedback entries when ``feedback``."""
     t, cz = scene.throw, float(centre[2])
     top = scene.net.upper[2] + scene.ball.radius - cz
-    low = np.array([t.distance[0], t.height[0] - cz, -1, -1, 0, 0, -cz], dtype=np.float32)
-    high = np.array([t.distance[1], t.height[1] - cz, 1, 1, 1, 1, max(top, floor - cz)], dtype=np.float32)
-    return spaces.Box(low, high, dtype=np.float32)
+    low = [t.distance[0], t.height[0] - cz, -1, -1, 0, 0, -cz]
+    high = [t.distance[1], t.height[1] - cz, 1, 1, 1, 1, max(top, floor - cz)]
+    if feedback:
+        low += [0, -FEEDBACK_LIMIT, -FEEDBACK_LIMIT, 0]
+        high += [1, FEEDBACK_LIMIT, FEEDBACK_LIMIT, FEEDBACK_LIMIT]
+    return spaces.Box(np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32)
 
 
 class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
@@ -141,14 +151,15 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                  dt: float | None = None, balls_per_episode: int = 3, reward_mode: str = "sparse",
                  render_mode: str | None = None, fast: bool = True,
                  overrides: dict[str, Any] | None = None, capture_rule: str | None = None,
-                 render_settling: bool = False) -> None:
+                 render_settling: bool = False, wind: tuple[float, float] | None = None,
+                 launch_noise: tuple[float, float, float] | None = None, feedback: bool = False) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
             raise ValueError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
         if not is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
             raise ValueError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
-        for name, flag in (("fast", fast), ("render_settling", render_settling)):
+        for name, flag in (("fast", fast), ("render_settling", render_settling), ("feedback", feedback)):
             if not isinstance(flag, (bool, np.bool_)):
                 raise ValueError(f"{name} = {flag!r}; allowed: True or False")
         config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
@@ -159,9 +170,15 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             changes["simulation.dt"] = dt
         if capture_rule is not None:
             changes["capture_rule"] = capture_rule
+        self.wind_range = None if wind is None else WindRange.parse(wind)
+        self.launch_noise = None if launch_noise is None else LaunchNoise.parse(launch_noise)
+        self.feedback = bool(feedback)
         self.sim = Simulator(config.replace(changes) if changes else config)
+        if self.wind_range is not None and self.sim.model.ball_drag == 0.0:
+            raise ValueError("wind needs air: the scene's air.density is 0 (pass overrides={'air.density': 1.2})")
         self.scene = self.sim.config
         self._base_scene = self.scene
+        self._overrides: dict[str, Any] = {}
         self.balls_per_episode = int(balls_per_episode)
         self.reward_mode = reward_mode
         self.render_mode = render_mode
@@ -172,8 +189,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._centre = self.sim.opening.centre
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
-        self.observation_space = _observation_space(self.scene, self._centre, self._floor)
-        self.observation_structure = {index.name.lower(): int(index) for index in ObservationIndex}
+        self.observation_space = _observation_space(self.scene, self._centre, self._floor, self.feedback)
+        self.observation_structure = {index.name.lower(): int(index) for index in ObservationIndex
+                                      if index < self.observation_space.shape[0]}
+        self._last_throw = np.zeros(FEEDBACK_SIZE)
         self.thrower: Thrower | None = None
         self._ended = False
         self._throws_done = 0
@@ -188,7 +207,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         balls = self.sim.ball_positions
         pile = float(balls[:, 2].max()) if len(balls) else self._floor
         bearing = math.radians(self.thrower.bearing)
-        obs = np.empty(len(ObservationIndex), dtype=np.float32)
+        obs = np.empty(self.observation_space.shape[0], dtype=np.float32)
         obs[ObservationIndex.DISTANCE] = self.thrower.distance
         obs[ObservationIndex.HEIGHT] = self.thrower.height - cz
         obs[ObservationIndex.BEARING_COS] = math.cos(bearing)
@@ -196,6 +215,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         obs[ObservationIndex.CAUGHT] = self._caught / self.balls_per_episode
         obs[ObservationIndex.THROWS_LEFT] = (self.balls_per_episode - self._throws_done) / self.balls_per_episode
         obs[ObservationIndex.PILE_HEIGHT] = pile - cz
+        if self.feedback:
+            obs[ObservationIndex.LAST_CAUGHT:] = self._last_throw
         return np.clip(obs, self.observation_space.low, self.observation_space.high)
 
     # ------------------------------------------------------------------ gym API
@@ -215,10 +236,16 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         Bad options raise a ValueError (or ConfigError) and leave the env as it was.
         """
         options = self._check_options(options)
-        if "overrides" in options:
-            self._set_scene(self._base_scene.replace(options["overrides"]))
+        changes = dict(options.get("overrides", self._overrides))
+        scene = self._base_scene.replace(changes)  # a bad override fails here, before any change
         super().reset(seed=seed)
+        if self.wind_range is not None:
+            changes["air.wind"] = self.wind_range.draw(self.np_random).tolist()
+            scene = self._base_scene.replace(changes)
+        self._set_scene(scene)
+        self._overrides = dict(options.get("overrides", self._overrides))
         self.sim.reset()
+        self._last_throw = np.zeros(FEEDBACK_SIZE)
         self._throws_done = 0
         self._caught = 0
         self._ended = False
@@ -229,7 +256,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if self._frame_clock is not None:
             self._frame_clock.restart(self.sim.state.time)
             self._record_frame(self.sim)
-        return self._observation(), {}
+        return self._observation(), {"wind": self.sim.model.wind.copy()}
 
     def _check_options(self, options: Any) -> dict[str, Any]:
         """Validate reset options (see :meth:`reset`) before anything changes."""
@@ -270,7 +297,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             return
         sim = Simulator(config)
         centre, floor = sim.opening.centre, float(sim.state.x[:, 2].min())
-        if _observation_space(config, centre, floor) != self.observation_space:
+        if _observation_space(config, centre, floor, self.feedback) != self.observation_space:
             raise ValueError("these overrides change the observation space's bounds (the net's geometry or the "
                              "ball radius); make a new env with them instead")
         self.sim, self.scene, self._centre, self._floor = sim, config, centre, floor
@@ -283,12 +310,19 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if self._ended:
             raise EpisodeEndedError(f"the episode ended after its {self.balls_per_episode} throws "
                                     f"(balls_per_episode); call reset() before step()")
-        velocity = self.action_velocity(action)
+        aimed = self.action_velocity(action)
+        velocity = aimed if self.launch_noise is None else self._released(action)
         launch = self.thrower.position
         observer = self._record_frame if self._frame_clock is not None else None
         result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frames=self._frame_clock,
                                 settle_frames=self.render_settling)
-        return self.after_throw(launch, velocity, result)
+        return self.after_throw(launch, velocity, result, aimed)
+
+    def _released(self, action: np.ndarray) -> np.ndarray:
+        """The launch velocity of a (valid) action after the launch noise."""
+        assert self.launch_noise is not None and self.thrower is not None
+        intended = action_to_launch(np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0), self.scene.throw)
+        return launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
 
     def action_velocity(self, action: np.ndarray) -> np.ndarray:
         """Validate an action and map it to a launch velocity for the current thrower."""
@@ -303,9 +337,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         assert self.thrower is not None
         return action_to_velocity(np.clip(a, -1.0, 1.0), self.thrower, self.scene.throw)
 
-    def after_throw(self, launch: np.ndarray, velocity: np.ndarray,
-                    result: ThrowResult) -> tuple[np.ndarray, float, bool, bool, dict]:
-        """Book a finished throw: reward, episode end, next thrower, observation and info."""
+    def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
+                    aimed: np.ndarray | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
+        """Book a finished throw: reward, episode end, next thrower, observation and info
+        (``aimed``: the velocity the action meant, before launch noise)."""
         self._throws_done += 1
         self._caught += int(result.captured)
         reward = 1.0 if result.captured else 0.0
@@ -313,6 +348,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             miss = opening_miss_distance(launch, velocity, self.sim.opening,
                                          self.sim.model.gravity, self.sim.model.ball_radius)
             reward = SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
+        if self.feedback:
+            self._last_throw = throw_feedback(self.sim, launch, velocity, result.captured)
         terminated = self._throws_done >= self.balls_per_episode
         self._ended = terminated
         if not terminated:
@@ -321,7 +358,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                 "final_position": result.final_position, "sim_time": result.time,
                 "substeps": result.settle_substeps + result.substeps, "throw_substeps": result.substeps,
                 "settle_substeps": result.settle_substeps, "settle_time": result.settle_time,
-                "launch_position": launch, "launch_velocity": velocity}
+                "launch_position": launch, "launch_velocity": velocity,
+                "aimed_velocity": velocity if aimed is None else aimed, "wind": self.sim.model.wind.copy()}
         if self.render_mode == "human":
             self._renderer_show()
         return self._observation(), reward, terminated, False, info

@@ -126,3 +126,28 @@ def held_by_friction(v, gravity, k, wind, radius, friction, p):
 def max_acceleration(speed: float, gravity: float, k: float, wind: np.ndarray) -> float:
     """A bound on a ball's acceleration while its speed stays below ``speed``."""
     return abs(gravity) + k * (speed + float(np.linalg.norm(wind))) ** 2
+
+
+@njit(cache=True)
+def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t_max):
+    """Where a lone ball's free flight from ``p``, ``v`` (through air, until its lowest point
+    first reaches the ground or ``t_max``) crosses the plane ``x[axis] = value`` moving the way
+    ``inwards`` (+1 or -1) points. Returns ``(point, crossed)``; when it never crosses, the point
+    of the flight nearest the plane (on the side it came from) and False."""
+    q, u = p.copy(), v.copy()
+    nearest = q.copy()
+    t = 0.0
+    while t < t_max:
+        before_q, before_u = q.copy(), u.copy()
+        rk4_step(q, u, step, gravity, k, wind)
+        t += step
+        h0 = inwards * (value - before_q[axis])   # > 0: still before the plane
+        h1 = inwards * (value - q[axis])
+        if h0 > 0.0 and h1 <= 0.0:
+            s = h0 / (h0 - h1)
+            return before_q + s * (q - before_q), True
+        if abs(value - q[axis]) < abs(value - nearest[axis]):
+            nearest[:] = q
+        if q[2] < radius and u[2] < 0.0:
+            break
+    return nearest, False

@@ -6,6 +6,7 @@ which use only this class's public API; :func:`~netgym.physics.plans.drive` carr
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -15,7 +16,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from netgym.arguments import integer_argument, is_real, vector_argument
-from netgym.config import SceneConfig, load_scene
+from netgym.config import AirConfig, SceneConfig, load_scene
 from netgym.errors import SimulationDivergedError, UnstableTimeStepError
 from netgym.physics.forces import energies
 from netgym.physics.integration import Workspace
@@ -294,8 +295,9 @@ class Simulator:
         return _MODES[key]
 
     def _settled_positions(self) -> np.ndarray:
-        """The net at rest under gravity (cached per scene config)."""
-        key = self.config
+        """The net at rest under gravity (cached per scene config; air acts on balls only, so
+        scenes that differ only in their air share it)."""
+        key = dataclasses.replace(self.config, air=AirConfig())
         if key not in _SETTLED:
             progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
             try:

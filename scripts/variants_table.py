@@ -1,0 +1,63 @@
+"""Capture rates of the reference agents on the registered variants, with 95% confidence
+intervals, as a markdown table (docs/AGENTS.md).
+
+Agents: the ballistic oracle (knows the drag of the air, not the wind), the informed oracle
+(also told each episode's wind: the ceiling), the adaptive oracle (corrects its aim from the
+feedback of its own throws) and random actions. Episodes are seeded 10000, 10001, ...; each
+agent meets the same ones. Two processes share the agents.
+
+Usage::
+
+    python scripts/variants_table.py --episodes 1000
+    python scripts/variants_table.py --quick            # a few episodes, for smoke tests
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from concurrent.futures import ProcessPoolExecutor
+
+import gymnasium as gym
+
+import netgym  # noqa: F401  (registers the variants)
+from agents.evaluation import evaluate
+from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
+from agents.random_agent import RandomAgent
+
+AGENTS = {
+    "ballistic oracle (blind to the wind)": lambda env: BallisticOracle(env.scene),
+    "informed oracle (knows the wind)": InformedOracle,
+    "adaptive oracle (uses the feedback)": lambda env: AdaptiveOracle(env.scene),
+    "random": lambda env: RandomAgent(0),
+}
+VARIANTS = {"NetCatchWindy-v0": list(AGENTS), "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"]}
+
+
+def _row(job: tuple[str, str, int]) -> str:
+    variant, agent, episodes = job
+    kwargs = gym.spec(variant).kwargs
+    start = time.perf_counter()
+    rate = evaluate(AGENTS[agent], episodes, seed=10_000, progress=f"{variant} {agent}", **kwargs)
+    return f"| {variant} | {agent} | {rate} | {rate.throws / (time.perf_counter() - start):.1f} |"
+
+
+def main() -> None:
+    """Parse arguments, evaluate every (variant, agent) pair, print the table."""
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--episodes", type=int, default=1000)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--quick", action="store_true", help="2 episodes per agent")
+    args = parser.parse_args()
+    episodes = 2 if args.quick else args.episodes
+    jobs = [(variant, agent, episodes) for variant, agents in VARIANTS.items() for agent in agents]
+    gym.make("NetCatchWindy-v0").reset(seed=0)  # compile the kernels and settle the net before the workers start
+    with ProcessPoolExecutor(args.workers) as pool:
+        rows = list(pool.map(_row, jobs))
+    print(f"| variant | agent | capture rate ({episodes} episodes, 95% CI) | throws/s (one process) |")
+    print("|---|---|---|---:|")
+    print("\n".join(rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,100 @@
+"""The variants: a hidden wind per episode, launch noise, the feedback of each throw; their
+registered ids pass Gymnasium's checker, and the windy one separates an oracle that knows the
+wind from one that does not, with room for learning within an episode."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import netgym  # noqa: F401
+from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
+from netgym.envs import NetCatchEnv
+from netgym.envs.net_catch import ObservationIndex
+from netgym.envs.variation import LaunchNoise, WindRange
+
+WINDY = {"balls_per_episode": 5, "overrides": {"air.density": 1.2}, "wind": (0.0, 3.0), "feedback": True}
+
+
+@pytest.mark.parametrize("env_id", ["NetCatchWindy-v0", "NetCatchNoisy-v0"])
+def test_variants_pass_the_env_checker(env_id: str) -> None:
+    env = gym.make(env_id)
+    check_env(env.unwrapped, skip_render_check=True)
+    env.close()
+
+
+def test_wind_is_drawn_per_episode_from_the_seed_and_hidden() -> None:
+    env = NetCatchEnv(**WINDY)
+    winds = [env.reset(seed=seed)[1]["wind"] for seed in (1, 2, 1)]
+    assert np.array_equal(winds[0], winds[2]) and not np.array_equal(winds[0], winds[1])
+    assert np.array_equal(env.sim.model.wind, winds[2])                         # the physics blows it
+    assert env.observation_space.shape == (len(ObservationIndex),)              # not an entry of its own
+    draws = np.array([WindRange(0.0, 3.0).draw(np.random.default_rng(k)) for k in range(2000)])
+    speeds = np.linalg.norm(draws, axis=1)
+    assert speeds.min() >= 0.0 and speeds.max() <= 3.0 and np.all(draws[:, 2] == 0.0)
+    assert abs(speeds.mean() - 1.5) < 0.05                                     # uniform speed
+    assert np.linalg.norm((draws[:, :2] / speeds[:, None]).mean(axis=0)) < 0.05  # any direction
+
+
+def test_launch_noise_has_the_stated_statistics() -> None:
+    noise, rng = LaunchNoise(0.3, 1.5, 2.0), np.random.default_rng(0)
+    released = np.array([noise.apply(10.0, 45.0, 0.0, rng) for _ in range(20000)])
+    assert np.allclose(released.mean(axis=0), [10.0, 45.0, 0.0], atol=0.05)
+    assert np.allclose(released.std(axis=0), [0.3, 1.5, 2.0], rtol=0.03)
+    env = NetCatchEnv(launch_noise=(0.3, 1.5, 1.5))
+    env.reset(seed=0)
+    _, _, _, _, info = env.step(np.zeros(3, dtype=np.float32))
+    assert not np.allclose(info["launch_velocity"], info["aimed_velocity"])
+
+
+def test_feedback_says_where_a_throw_crossed_the_opening() -> None:
+    """Through the centre: offsets ~ 0; a throw 2 m long: offset ~ 2 m along its direction;
+    one that never rises to the opening: short > 0."""
+    env = NetCatchEnv(feedback=True)
+    obs, _ = env.reset(seed=3, options={"thrower": {"bearing": 180.0}})  # thrower on the -x side
+    assert not np.any(obs[ObservationIndex.LAST_CAUGHT:])
+    oracle = BallisticOracle(env.scene)
+    obs, _, _, _, info = env.step(oracle.predict(obs)[0])
+    assert obs[ObservationIndex.LAST_CAUGHT] == float(info["captured"]) == 1.0
+    assert np.abs(obs[ObservationIndex.LAST_OFFSET_U:ObservationIndex.LAST_SHORT + 1]).max() < 0.02
+    env.reset(seed=3, options={"thrower": {"bearing": 180.0}})
+    action = oracle.aim(env.thrower, env.sim.opening.centre + [2.0, 0.0, 0.0])
+    obs, *_ = env.step(action)
+    assert obs[ObservationIndex.LAST_OFFSET_U] == pytest.approx(2.0, abs=0.02)
+    assert obs[ObservationIndex.LAST_CAUGHT] == 0.0
+    env.reset(seed=3)
+    obs, *_ = env.step(np.array([-1.0, -1.0, 0.0], dtype=np.float32))         # 4 m/s at 20 degrees
+    assert obs[ObservationIndex.LAST_SHORT] > 0.5
+
+
+def test_wind_needs_air_and_bad_variation_arguments_are_refused() -> None:
+    with pytest.raises(ValueError, match="wind needs air"):
+        NetCatchEnv(wind=(0.0, 3.0))
+    with pytest.raises(ValueError, match="wind = "):
+        NetCatchEnv(overrides={"air.density": 1.2}, wind=(3.0, 1.0))
+    with pytest.raises(ValueError, match="launch_noise = "):
+        NetCatchEnv(launch_noise=(0.3, -1.0, 1.0))
+    with pytest.raises(ValueError, match="feedback = "):
+        NetCatchEnv(feedback=1)
+
+
+def _capture_rate(policy_of, episodes: int) -> float:
+    env = NetCatchEnv(**WINDY)
+    policy = policy_of(env)
+    caught = throws = 0
+    for episode in range(episodes):
+        obs, _ = env.reset(seed=500 + episode)
+        done = False
+        while not done:
+            obs, _, terminated, truncated, info = env.step(policy.predict(obs)[0])
+            caught, throws, done = caught + info["captured"], throws + 1, terminated or truncated
+    return caught / throws
+
+
+def test_the_windy_variant_rewards_knowing_or_learning_the_wind() -> None:
+    informed = _capture_rate(InformedOracle, 4)
+    blind = _capture_rate(lambda env: BallisticOracle(env.scene), 4)
+    adaptive = _capture_rate(lambda env: AdaptiveOracle(env.scene), 4)
+    assert informed >= 0.9 and blind <= 0.6 and adaptive > blind
