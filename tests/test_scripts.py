@@ -78,3 +78,9 @@ def test_report_quick_covers_every_section() -> None:
     for integrator in INTEGRATORS:
         assert f"| {integrator} |" in out
     assert "NumPy vectorised" in out
+
+
+def test_variants_table_quick_prints_every_agent() -> None:
+    out = _run("scripts/variants_table.py", "--quick", "--workers", "1")
+    rows = [line for line in out.splitlines() if line.startswith("| NetCatch")]
+    assert len(rows) == 6 and all("% (" in row for row in rows)

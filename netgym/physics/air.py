@@ -138,7 +138,7 @@ def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t
     nearest = q.copy()
     t = 0.0
     while t < t_max:
-        before_q, before_u = q.copy(), u.copy()
+        before_q = q.copy()
         rk4_step(q, u, step, gravity, k, wind)
         t += step
         h0 = inwards * (value - before_q[axis])   # > 0: still before the plane
