@@ -9,6 +9,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+import gymnasium as gym
 import numpy as np
 from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback
@@ -22,11 +23,16 @@ from netgym.envs import NetCatchEnv
 EVAL_SEED = 20_000   # evaluation episodes during training use seeds 20000, 20001, ... (not the final test's)
 
 
-def make_training_env(n_envs: int, seed: int) -> VecEnv:
+def env_kwargs(env_id: str) -> dict:
+    """The keyword arguments of a registered NetCatch id with the training's own (ppo.yml's)."""
+    return {**gym.spec(env_id).kwargs, **ENV_KWARGS}
+
+
+def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0") -> VecEnv:
     """The vectorised training environment: ``make_vec_env`` with ``SubprocVecEnv`` (one
     process per environment)."""
     NetCatchEnv()  # compile the kernels once before the workers start
-    return make_vec_env("netgym:NetCatch-v0", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
+    return make_vec_env(f"netgym:{env_id}", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
                         env_kwargs=dict(ENV_KWARGS))
 
 
@@ -40,9 +46,10 @@ class CaptureCurve(BaseCallback):
     of training, evaluations excluded), save the best model, stop when the wall-clock budget
     is spent."""
 
-    def __init__(self, eval_every: int, episodes: int, budget_s: float, best_path: Path, seed: int = EVAL_SEED) -> None:
+    def __init__(self, eval_every: int, episodes: int, budget_s: float, best_path: Path, seed: int = EVAL_SEED,
+                 env_id: str = "NetCatch-v0") -> None:
         super().__init__()
-        self.eval_every, self.episodes, self.budget_s = eval_every, episodes, budget_s
+        self.eval_every, self.episodes, self.budget_s, self.env_id = eval_every, episodes, budget_s, env_id
         self.best_path, self.seed = best_path, seed
         self.points: list[Point] = []
         self._best = -1.0
@@ -52,7 +59,7 @@ class CaptureCurve(BaseCallback):
 
     def _evaluate(self) -> None:
         self._spent += time.perf_counter() - self._resumed
-        rate = evaluate(self.model, self.episodes, seed=self.seed, **ENV_KWARGS).rate  # captures, whatever the reward
+        rate = evaluate(self.model, self.episodes, seed=self.seed, **env_kwargs(self.env_id)).rate  # captures
         self.points.append((self.num_timesteps, rate, self._spent))
         self.logger.record("eval/capture_rate", rate)
         if rate > self._best:
@@ -75,7 +82,8 @@ class CaptureCurve(BaseCallback):
             self._evaluate()
 
 
-def plot_curves(curves: list[list[Point]], oracle: float, random: float, path: Path) -> None:
+def plot_curves(curves: list[list[Point]], oracle: float, random: float, path: Path,
+                title: str = "PPO on NetCatch-v0 (basket)") -> None:
     """Capture rate against environment steps and against wall-clock minutes: each seed's
     curve, their mean and min-max spread (several seeds), the oracle and random rates."""
     import matplotlib
@@ -100,7 +108,7 @@ def plot_curves(curves: list[list[Point]], oracle: float, random: float, path: P
     axes[0].set_ylabel("capture rate (%), deterministic policy")
     axes[0].set_ylim(0, 105)
     axes[0].legend(loc="lower right", fontsize=8)
-    fig.suptitle("PPO on NetCatch-v0 (basket)")
+    fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -116,13 +124,14 @@ def _spread(curves: list[list[Point]]) -> tuple[np.ndarray, np.ndarray, np.ndarr
 
 def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8,
           eval_every: int = 4096, eval_episodes: int = 40, seed: int = 0,
-          progress_bar: bool = True) -> tuple[PPO, list[Point]]:
+          progress_bar: bool = True, env_id: str = "NetCatch-v0") -> tuple[PPO, list[Point]]:
     """Train PPO within a wall-clock budget; saves ``model.zip`` and ``best_model.zip`` in
     ``out`` and logs to TensorBoard under ``out/tb``. Returns the model and its capture curve
-    (from step 0 to the end; see :class:`CaptureCurve`). ``progress_bar``: SB3's, with ETA."""
+    (from step 0 to the end; see :class:`CaptureCurve`). ``progress_bar``: SB3's, with ETA;
+    ``env_id``: the registered NetCatch id to train on."""
     out.mkdir(parents=True, exist_ok=True)
-    env = make_training_env(n_envs, seed)
-    curve = CaptureCurve(eval_every, eval_episodes, 60.0 * minutes, out / "best_model")
+    env = make_training_env(n_envs, seed, env_id)
+    curve = CaptureCurve(eval_every, eval_episodes, 60.0 * minutes, out / "best_model", env_id=env_id)
     model = PPO(POLICY, env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
     model.learn(timesteps, callback=curve, progress_bar=progress_bar)
     model.save(out / "model")

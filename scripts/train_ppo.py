@@ -27,7 +27,8 @@ from pathlib import Path
 
 from agents.evaluation import evaluate
 from agents.policies import load_policy
-from agents.training import plot_curves, train
+from agents.oracle import BallisticOracle
+from agents.training import env_kwargs, plot_curves, train
 
 
 def main() -> None:
@@ -40,6 +41,7 @@ def main() -> None:
     parser.add_argument("--eval-every", type=int, default=4096, help="environment steps between evaluations")
     parser.add_argument("--eval-episodes", type=int, default=40)
     parser.add_argument("--seeds", type=int, nargs="+", default=[0], help="one run per seed, one after another")
+    parser.add_argument("--env", default="NetCatch-v0", help="the registered NetCatch id to train on")
     parser.add_argument("--quick", action="store_true", help="tiny budget for smoke tests")
     args = parser.parse_args()
     if args.quick:
@@ -49,21 +51,22 @@ def main() -> None:
         out = args.out if len(args.seeds) == 1 else args.out / f"seed_{seed}"
         print(f"seed {seed}: training for up to {args.minutes:g} min or {args.timesteps} steps ...")
         model, points = train(out, args.minutes, args.timesteps, args.n_envs, args.eval_every, args.eval_episodes,
-                              seed, progress_bar=True)
+                              seed, progress_bar=True, env_id=args.env)
         curves.append(points)
         models.append(model)
         print(f"seed {seed}: trained {model.num_timesteps} steps in {points[-1][2] / 60:.1f} min of training; "
               f"evaluations {', '.join(f'{100 * p[1]:.0f}%' for p in points)}; best {100 * max(p[1] for p in points):.1f}%")
     episodes = 4 if args.quick else 100
-    oracle = evaluate(load_policy("oracle"), episodes, seed=10_000)
-    random = evaluate(load_policy("random"), episodes, seed=10_000)
+    kwargs = env_kwargs(args.env)
+    oracle = evaluate(lambda env: BallisticOracle(env.scene), episodes, seed=10_000, **kwargs)
+    random = evaluate(load_policy("random"), episodes, seed=10_000, **kwargs)
     with open(args.out / "curve.csv", "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["seed", "env_steps", "capture_rate", "wall_seconds"])
         writer.writerows((seed, *p) for seed, points in zip(args.seeds, curves) for p in points)
-    plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png")
+    plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png", f"PPO on {args.env}")
     for seed, model in zip(args.seeds, models):
-        print(f"seed {seed}: capture rate over {episodes} test episodes: PPO {evaluate(model, episodes, seed=10_000)}")
+        print(f"seed {seed}: capture rate over {episodes} test episodes: PPO {evaluate(model, episodes, seed=10_000, **kwargs)}")
     print(f"oracle {oracle}; random {random}; wrote {args.out / 'learning_curve.png'}")
 
 

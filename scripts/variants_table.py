@@ -3,7 +3,7 @@ intervals, as a markdown table (docs/AGENTS.md).
 
 Agents: the ballistic oracle (knows the drag of the air, not the wind), the informed oracle
 (also told each episode's wind: the ceiling), the adaptive oracle (corrects its aim from the
-feedback of its own throws) and random actions. Episodes are seeded 10000, 10001, ...; each
+feedback of its own throws), the constant middle action and random actions. Episodes are seeded 10000, 10001, ...; each
 agent meets the same ones. Two processes share the agents.
 
 Usage::
@@ -19,6 +19,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 import gymnasium as gym
+import numpy as np
 
 import netgym  # noqa: F401  (registers the variants)
 from agents.evaluation import evaluate
@@ -29,9 +30,18 @@ AGENTS = {
     "ballistic oracle (blind to the wind)": lambda env: BallisticOracle(env.scene),
     "informed oracle (knows the wind)": InformedOracle,
     "adaptive oracle (uses the feedback)": lambda env: AdaptiveOracle(env.scene),
+    "constant action (10 m/s, 50 degrees, straight)": lambda env: ConstantAction(),
     "random": lambda env: RandomAgent(0),
 }
 VARIANTS = {"NetCatchWindy-v0": list(AGENTS), "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"]}
+
+
+class ConstantAction:
+    """The middle of the action space every time: a baseline that needs no aim at all."""
+
+    def predict(self, observation: np.ndarray, state=None, episode_start=None, deterministic: bool = True):
+        """The zero action."""
+        return np.zeros(3, dtype=np.float32), state
 
 
 def _row(job: tuple[str, str, int]) -> str:

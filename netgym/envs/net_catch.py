@@ -91,6 +91,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | 4 | balls caught so far / balls per episode | - |
     | 5 | throws left / balls per episode | - |
     | 6 | height of the highest caught ball minus the opening centre's height (the net's lowest point when none) | m |
+    | 7 | ``feedback=True`` only: the previous throw was caught (0 or 1; 0 before the first) | - |
+    | 8, 9 | feedback: where the previous throw's free flight crossed the opening's plane, minus its centre, along the plane's two axes (world x, y for the basket; y, z for the goal), clipped to +-10 | m |
+    | 10 | feedback: how far short of the opening's plane that flight stayed (0 when it crossed) | m |
 
     ## Rewards
 
@@ -102,6 +105,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     The net at rest under gravity without balls; the thrower drawn uniformly from the scene's
     distance, bearing and height ranges with ``np_random``. Each throw draws a new thrower.
+    With ``wind``, the episode's wind is drawn too (never observed: ``info["wind"]`` reports it).
 
     ## Episode end
 
@@ -129,12 +133,17 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
     | ``render_settling`` | False | ``rgb_array_list``/``human``: also film the net settling between throws |
+    | ``wind`` | None | ``(low, high)`` m/s: a hidden horizontal wind drawn per episode (speed uniform, any direction; needs ``air.density`` > 0), in ``info["wind"]`` |
+    | ``launch_noise`` | None | ``(speed, elevation, azimuth)`` standard deviations (m/s, degrees) of Gaussian noise on each release; ``info["aimed_velocity"]`` is the intended one |
+    | ``feedback`` | False | append the previous throw's outcome and where it passed the opening to the observation |
     | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit) or ``"line"`` (goal: the whole ball crossed the mouth) |
 
     ## Registered ids
 
-    ``NetCatch-v0`` (these defaults), ``NetCatchGoal-v0`` (``scene="goal"``) and
-    ``NetCatchLongEpisode-v0`` (``balls_per_episode=10``); see :mod:`netgym`.
+    ``NetCatch-v0`` (these defaults), ``NetCatchGoal-v0`` (``scene="goal"``),
+    ``NetCatchLongEpisode-v0`` (``balls_per_episode=10``), ``NetCatchWindy-v0`` (air, a hidden
+    wind of 0-3 m/s per episode, 5 throws, feedback) and ``NetCatchNoisy-v0`` (launch noise);
+    see :mod:`netgym`.
 
     ## Version History
 
@@ -143,6 +152,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
       shipped PPO model was trained on the old default and scores the same on the new one);
       resting contacts hold static friction (balls no longer creep on the settled net); the
       goal scene counts a goal by the ``line`` rule; ``info`` books the settling pause.
+      Options added without changing v0's dynamics: ``reset(options=...)``, ``render_settling``,
+      and the variation arguments ``wind``, ``launch_noise``, ``feedback`` (off by default).
+    - ``NetCatchWindy-v0`` and ``NetCatchNoisy-v0``: new in netgym 0.1.
     """
 
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
