@@ -16,6 +16,9 @@ id                            what                                        reward
                               feedback of each throw in the observation
 ``NetCatchNoisy-v0``          the basket, launch noise (sd 0.3 m/s,       2.7
                               1.5 degrees elevation and azimuth)
+``NetCatchRandomized-v0``     the basket with ball mass, ball/net          2.9
+                              restitution and friction, structural
+                              stiffness and damping drawn per episode
 ============================  ==========================================  ================
 
 The thresholds are 97% of the balls of an episode caught on the sparse reward for the first
@@ -35,6 +38,10 @@ ENVIRONMENTS = {
     "NetCatchWindy-v0": ({"balls_per_episode": 5, "overrides": {"air.density": 1.2}, "wind": (0.0, 3.0),
                           "feedback": True}, 4.5),
     "NetCatchNoisy-v0": ({"launch_noise": (0.3, 1.5, 1.5)}, 2.7),
+    "NetCatchRandomized-v0": ({"randomize": {"ball.mass": (0.5, 2.0), "contact.ball_net.restitution": (0.2, 0.7),
+                                             "contact.ball_net.friction": (0.1, 0.6),
+                                             "springs.structural.ks": (1000.0, 3000.0),
+                                             "springs.structural.kd": (20.0, 80.0)}}, 2.9),
 }
 
 for _id, (_kwargs, _threshold) in ENVIRONMENTS.items():

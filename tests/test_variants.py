@@ -11,6 +11,7 @@ from gymnasium.utils.env_checker import check_env
 
 import netgym  # noqa: F401
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
+from netgym.config import ConfigError
 from netgym.envs import NetCatchEnv
 from netgym.envs.net_catch import ObservationIndex
 from netgym.envs.variation import LaunchNoise, WindRange
@@ -18,7 +19,7 @@ from netgym.envs.variation import LaunchNoise, WindRange
 WINDY = {"balls_per_episode": 5, "overrides": {"air.density": 1.2}, "wind": (0.0, 3.0), "feedback": True}
 
 
-@pytest.mark.parametrize("env_id", ["NetCatchWindy-v0", "NetCatchNoisy-v0"])
+@pytest.mark.parametrize("env_id", ["NetCatchWindy-v0", "NetCatchNoisy-v0", "NetCatchRandomized-v0"])
 def test_variants_pass_the_env_checker(env_id: str) -> None:
     env = gym.make(env_id)
     check_env(env.unwrapped, skip_render_check=True)
@@ -36,6 +37,25 @@ def test_wind_is_drawn_per_episode_from_the_seed_and_hidden() -> None:
     assert speeds.min() >= 0.0 and speeds.max() <= 3.0 and np.all(draws[:, 2] == 0.0)
     assert abs(speeds.mean() - 1.5) < 0.05                                     # uniform speed
     assert np.linalg.norm((draws[:, :2] / speeds[:, None]).mean(axis=0)) < 0.05  # any direction
+
+
+def test_domain_randomisation_is_drawn_per_episode_from_the_seed() -> None:
+    ranges = {"ball.mass": (0.5, 2.0), "springs.structural.ks": (1000.0, 3000.0)}
+    env = NetCatchEnv(randomize=ranges)
+    draws = [env.reset(seed=seed)[1]["scene_draws"] for seed in (4, 5, 4)]
+    assert draws[0] == draws[2] and draws[0] != draws[1]
+    for field, (low, high) in ranges.items():
+        assert all(low <= d[field] <= high for d in draws)
+    assert env.sim.config.ball.mass == draws[2]["ball.mass"]                    # the physics uses them
+    assert env.sim.config.springs.structural.ks == draws[2]["springs.structural.ks"]
+    _, _, _, _, info = env.step(np.zeros(3, dtype=np.float32))
+    assert info["scene_draws"] == draws[2]
+    with pytest.raises(ConfigError, match="ball.mass"):
+        NetCatchEnv(randomize={"ball.mass": (-1.0, 2.0)})
+    with pytest.raises(ConfigError, match="unknown field 'ball.colour'"):
+        NetCatchEnv(randomize={"ball.colour": (0.0, 1.0)})
+    with pytest.raises(ValueError, match="randomize"):
+        NetCatchEnv(randomize={"ball.mass": (2.0, 1.0)})
 
 
 def test_launch_noise_has_the_stated_statistics() -> None:

@@ -15,7 +15,8 @@ from gymnasium import spaces
 from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError
-from netgym.envs.variation import FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, WindRange, throw_feedback
+from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
+                                  throw_feedback)
 from netgym.launch import (Thrower, action_to_launch, action_to_velocity, launch_velocity, opening_miss_distance,
                            sample_thrower)
 from netgym.physics.frames import FrameClock
@@ -136,6 +137,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``wind`` | None | ``(low, high)`` m/s: a hidden horizontal wind drawn per episode (speed uniform, any direction; needs ``air.density`` > 0), in ``info["wind"]`` |
     | ``launch_noise`` | None | ``(speed, elevation, azimuth)`` standard deviations (m/s, degrees) of Gaussian noise on each release; ``info["aimed_velocity"]`` is the intended one |
     | ``feedback`` | False | append the previous throw's outcome and where it passed the opening to the observation |
+    | ``randomize`` | None | domain randomisation: ``{scene field: (low, high)}`` drawn uniformly per episode (``info["scene_draws"]``; fields that change the spaces are refused at reset) |
     | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit) or ``"line"`` (goal: the whole ball crossed the mouth) |
 
     ## Registered ids
@@ -164,7 +166,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                  render_mode: str | None = None, fast: bool = True,
                  overrides: dict[str, Any] | None = None, capture_rule: str | None = None,
                  render_settling: bool = False, wind: tuple[float, float] | None = None,
-                 launch_noise: tuple[float, float, float] | None = None, feedback: bool = False) -> None:
+                 launch_noise: tuple[float, float, float] | None = None, feedback: bool = False,
+                 randomize: dict[str, tuple[float, float]] | None = None) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
@@ -190,7 +193,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError("wind needs air: the scene's air.density is 0 (pass overrides={'air.density': 1.2})")
         self.scene = self.sim.config
         self._base_scene = self.scene
+        self.randomize = None if randomize is None else SceneRanges.parse(randomize, self.scene)
         self._overrides: dict[str, Any] = {}
+        self._draws: dict[str, float] = {}
         self.balls_per_episode = int(balls_per_episode)
         self.reward_mode = reward_mode
         self.render_mode = render_mode
@@ -249,11 +254,13 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         """
         options = self._check_options(options)
         changes = dict(options.get("overrides", self._overrides))
-        scene = self._base_scene.replace(changes)  # a bad override fails here, before any change
+        self._base_scene.replace(changes)  # a bad override fails here, before any change
         super().reset(seed=seed)
+        self._draws = {} if self.randomize is None else self.randomize.draw(self.np_random)
+        changes.update(self._draws)
         if self.wind_range is not None:
             changes["air.wind"] = self.wind_range.draw(self.np_random).tolist()
-            scene = self._base_scene.replace(changes)
+        scene = self._base_scene.replace(changes)
         self._set_scene(scene)
         self._overrides = dict(options.get("overrides", self._overrides))
         self.sim.reset()
@@ -268,7 +275,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if self._frame_clock is not None:
             self._frame_clock.restart(self.sim.state.time)
             self._record_frame(self.sim)
-        return self._observation(), {"wind": self.sim.model.wind.copy()}
+        return self._observation(), {"wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
 
     def _check_options(self, options: Any) -> dict[str, Any]:
         """Validate reset options (see :meth:`reset`) before anything changes."""
@@ -371,7 +378,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                 "substeps": result.settle_substeps + result.substeps, "throw_substeps": result.substeps,
                 "settle_substeps": result.settle_substeps, "settle_time": result.settle_time,
                 "launch_position": launch, "launch_velocity": velocity,
-                "aimed_velocity": velocity if aimed is None else aimed, "wind": self.sim.model.wind.copy()}
+                "aimed_velocity": velocity if aimed is None else aimed, "wind": self.sim.model.wind.copy(),
+                "scene_draws": dict(self._draws)}
         if self.render_mode == "human":
             self._renderer_show()
         return self._observation(), reward, terminated, False, info

@@ -1,5 +1,6 @@
-"""What the NetCatch variants vary and report: a hidden wind drawn per episode, noise on the
-launch, and the feedback of the previous throw (where it passed the opening)."""
+"""What the NetCatch variants vary and report: a hidden wind drawn per episode, scene fields
+drawn per episode (domain randomisation), noise on the launch, and the feedback of the
+previous throw (where it passed the opening)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.arguments import is_real
+from netgym.config import SceneConfig
 from netgym.physics import air
 from netgym.physics.simulator import Simulator
 
@@ -65,6 +67,37 @@ class LaunchNoise:
         """The released (speed, elevation, azimuth) of an intended one (speed kept >= 0)."""
         noise = rng.normal(0.0, 1.0, 3) * (self.speed, self.elevation, self.azimuth)
         return max(0.0, speed + noise[0]), elevation + noise[1], azimuth + noise[2]
+
+
+@dataclass(frozen=True)
+class SceneRanges:
+    """Domain randomisation: scene fields drawn uniformly per episode, e.g.
+    ``{"ball.mass": (0.5, 2.0), "springs.structural.ks": (1000, 3000)}``."""
+
+    ranges: tuple[tuple[str, float, float], ...]
+
+    @classmethod
+    def parse(cls, value: object, scene: SceneConfig) -> "SceneRanges":
+        """From a dict of dotted scene fields to ``(low, high)``; both ends must make a valid
+        scene (a ConfigError names the field otherwise)."""
+        if not isinstance(value, dict) or not value:
+            raise ValueError(f"randomize = {value!r}; allowed: a dict of scene fields to (low, high) ranges")
+        ranges = []
+        for field, bounds in value.items():
+            if (not isinstance(bounds, (tuple, list)) or len(bounds) != 2
+                    or not all(is_real(x) and math.isfinite(float(x)) for x in bounds)):
+                raise ValueError(f"randomize[{field!r}] = {bounds!r}; allowed: a (low, high) pair of numbers")
+            low, high = float(bounds[0]), float(bounds[1])
+            if low > high:
+                raise ValueError(f"randomize[{field!r}] = {bounds!r}; allowed: an increasing (low, high) pair")
+            scene.replace({field: low})
+            scene.replace({field: high})
+            ranges.append((str(field), low, high))
+        return cls(tuple(ranges))
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        """One value per field."""
+        return {field: float(rng.uniform(low, high)) for field, low, high in self.ranges}
 
 
 FEEDBACK_SIZE = 4
