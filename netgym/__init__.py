@@ -19,6 +19,8 @@ id                            what                                        reward
 ``NetCatchRandomized-v0``     the basket with ball mass, ball/net          2.9
                               restitution and friction, structural
                               stiffness and damping drawn per episode
+``NetCatchPixels-v0``         NetCatch-v0 seen as 84 x 84 RGB images from  2.9
+                              the thrower's release point (ThrowerView)
 ============================  ==========================================  ================
 
 The thresholds are 97% of the balls of an episode caught on the sparse reward for the first
@@ -52,3 +54,6 @@ for _id, (_kwargs, _threshold) in ENVIRONMENTS.items():
             kwargs=_kwargs,
             reward_threshold=_threshold,
         )
+if "NetCatchPixels-v0" not in registry:
+    register(id="NetCatchPixels-v0", entry_point="netgym.wrappers:thrower_view_env", kwargs={"size": 84},
+             reward_threshold=2.9)

@@ -96,11 +96,21 @@ class Renderer:
         if not isinstance(supersample, int) or not 1 <= supersample <= 4:
             raise ValueError(f"supersample = {supersample!r}; allowed: an integer in [1, 4]")
         self.supersample = supersample
-        self.camera = scene_camera(sim, width * supersample, height * supersample)
-        self.background = _background(self.camera)
+        self.size = (width, height)
+        self.look(scene_camera(sim, width * supersample, height * supersample))
         self.human, self.fps = human, fps
         self._window = None
         self._clock = None
+
+    def look(self, camera: Camera) -> None:
+        """Draw through ``camera`` from now on (its size: ``supersample`` times the frame's)."""
+        self.camera = camera
+        self.background = _background(camera)
+
+    def look_from(self, eye: np.ndarray, target: np.ndarray, fov: float = 50.0) -> None:
+        """Draw from ``eye`` towards ``target`` from now on."""
+        width, height = self.size
+        self.look(Camera(eye, target, width * self.supersample, height * self.supersample, fov))
 
     def _line_fragments(self, a: np.ndarray, b: np.ndarray, colour: np.ndarray, thickness: int):
         pa, da = self.camera.project(a)

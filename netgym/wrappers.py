@@ -58,3 +58,38 @@ class RecordEpisodeVideo(gym.Wrapper):
                 self.written.append(write_video(self._frames, path, self.env.metadata["render_fps"]))
                 self._frames = None
         return obs, reward, terminated, truncated, info
+
+
+class ThrowerView(gym.ObservationWrapper):
+    """Pixel observations: what the thrower sees, a ``size`` x ``size`` RGB image from the
+    release point towards the opening's centre (the net, the balls caught so far, the ground).
+    The vector observation is dropped; ``info`` is unchanged.
+
+    :param env: a NetCatch env (any render mode).
+    :param size: image side in pixels.
+    :param fov: vertical field of view (degrees).
+    """
+
+    def __init__(self, env: gym.Env, size: int = 84, fov: float = 60.0) -> None:
+        super().__init__(env)
+        if not isinstance(size, int) or not 16 <= size <= 512:
+            raise ValueError(f"size = {size!r}; allowed: an integer in [16, 512]")
+        from netgym.render import Renderer
+
+        self.fov = fov
+        self.renderer = Renderer(env.unwrapped.sim, size, size, supersample=1)
+        self.observation_space = gym.spaces.Box(0, 255, (size, size, 3), np.uint8)
+
+    def observation(self, observation: np.ndarray) -> np.ndarray:
+        """The image from the current thrower's release point."""
+        env = self.env.unwrapped
+        if self.renderer.camera.eye.tolist() != env.thrower.position.tolist():
+            self.renderer.look_from(env.thrower.position, env.sim.opening.centre, self.fov)
+        return self.renderer.draw(env.sim)
+
+
+def thrower_view_env(size: int = 84, **kwargs: Any) -> gym.Env:
+    """A NetCatch env (``kwargs``) with :class:`ThrowerView` pixel observations."""
+    from netgym.envs import NetCatchEnv
+
+    return ThrowerView(NetCatchEnv(**kwargs), size)

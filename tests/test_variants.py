@@ -15,15 +15,30 @@ from netgym.config import ConfigError
 from netgym.envs import NetCatchEnv
 from netgym.envs.net_catch import ObservationIndex
 from netgym.envs.variation import LaunchNoise, WindRange
+from netgym.wrappers import thrower_view_env
 
 WINDY = {"balls_per_episode": 5, "overrides": {"air.density": 1.2}, "wind": (0.0, 3.0), "feedback": True}
 
 
-@pytest.mark.parametrize("env_id", ["NetCatchWindy-v0", "NetCatchNoisy-v0", "NetCatchRandomized-v0"])
+@pytest.mark.parametrize("env_id", ["NetCatchWindy-v0", "NetCatchNoisy-v0", "NetCatchRandomized-v0",
+                                    "NetCatchPixels-v0"])
+@pytest.mark.filterwarnings("ignore:.*is different from the unwrapped version")  # ThrowerView is a wrapper
 def test_variants_pass_the_env_checker(env_id: str) -> None:
-    env = gym.make(env_id)
-    check_env(env.unwrapped, skip_render_check=True)
+    env = thrower_view_env() if env_id == "NetCatchPixels-v0" else gym.make(env_id).unwrapped
+    check_env(env, skip_render_check=True)
     env.close()
+
+
+def test_pixel_observations_show_the_net_from_the_thrower() -> None:
+    env = gym.make("NetCatchPixels-v0")
+    near, _ = env.reset(seed=0, options={"thrower": {"distance": 3.0}})
+    far, _ = env.reset(seed=0, options={"thrower": {"distance": 8.0}})
+    assert near.shape == far.shape == (84, 84, 3) and near.dtype == np.uint8
+    rgb = near.astype(int)
+    red = (rgb[..., 0] > 150) & (rgb[..., 1] < 100)                 # the poles and rim
+    grey = (rgb.min(axis=-1) > 150) & (np.ptp(rgb, axis=-1) < 25)   # the net
+    assert red.sum() > 50 and grey.sum() > 50
+    assert red.sum() > ((far[..., 0] > 150) & (far[..., 1] < 100)).sum()  # nearer: the frame looks bigger
 
 
 def test_wind_is_drawn_per_episode_from_the_seed_and_hidden() -> None:
