@@ -25,7 +25,7 @@ id                            what                                        reward
 
 The thresholds are 97% of the balls of an episode caught on the sparse reward for the first
 three; 90% for the windy variant (an informed oracle that knows the wind catches 100%, the
-ballistic oracle that does not 34%, see docs/AGENTS.md) and for the noisy one (about what the
+ballistic oracle that does not 54%, see docs/AGENTS.md) and for the noisy one (about what the
 ballistic oracle catches through the noise: 91%).
 """
 
