@@ -33,7 +33,9 @@ AGENTS = {
     "constant action (10 m/s, 50 degrees, straight)": lambda env: ConstantAction(),
     "random": lambda env: RandomAgent(0),
 }
-VARIANTS = {"NetCatchWindy-v0": list(AGENTS), "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"]}
+VARIANTS = {"NetCatchWindy-v0": list(AGENTS),
+            "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"],
+            "NetCatchRandomized-v0": ["ballistic oracle (blind to the wind)", "random"]}
 
 
 class ConstantAction:
