@@ -9,6 +9,7 @@ from agents.oracle import BallisticOracle
 from agents.random_agent import RandomAgent
 
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
+PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.zip"  # trained on NetCatchWindy-v0
 
 
 SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG")

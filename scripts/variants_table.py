@@ -3,7 +3,8 @@ intervals, as a markdown table (docs/AGENTS.md).
 
 Agents: the ballistic oracle (knows the drag of the air, not the wind), the informed oracle
 (also told each episode's wind: the ceiling), the adaptive oracle (corrects its aim from the
-feedback of its own throws), the constant middle action and random actions. Episodes are seeded 10000, 10001, ...; each
+feedback of its own throws), the constant middle action, random actions, and PPO trained on
+the windy variant (``python scripts/train_ppo.py --env NetCatchWindy-v0 --minutes 20``). Episodes are seeded 10000, 10001, ...; each
 agent meets the same ones. Two processes share the agents.
 
 Usage::
@@ -24,6 +25,7 @@ import numpy as np
 import netgym  # noqa: F401  (registers the variants)
 from agents.evaluation import evaluate
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
+from agents.policies import PRETRAINED_WINDY, load_policy
 from agents.random_agent import RandomAgent
 
 AGENTS = {
@@ -32,8 +34,9 @@ AGENTS = {
     "adaptive oracle (uses the feedback)": lambda env: AdaptiveOracle(env.scene),
     "constant action (10 m/s, 50 degrees, straight)": lambda env: ConstantAction(),
     "random": lambda env: RandomAgent(0),
+    "PPO, MLP with the feedback (agents/pretrained/ppo_windy.zip)": lambda env: load_policy(PRETRAINED_WINDY),
 }
-VARIANTS = {"NetCatchWindy-v0": list(AGENTS),
+VARIANTS = {"NetCatchWindy-v0": list(AGENTS),  # the windy PPO model was trained on NetCatchWindy-v0
             "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"],
             "NetCatchRandomized-v0": ["ballistic oracle (blind to the wind)", "random"]}
 

@@ -83,4 +83,4 @@ def test_report_quick_covers_every_section() -> None:
 def test_variants_table_quick_prints_every_agent() -> None:
     out = _run("scripts/variants_table.py", "--quick", "--workers", "1")
     rows = [line for line in out.splitlines() if line.startswith("| NetCatch")]
-    assert len(rows) == 9 and all("% (" in row for row in rows)
+    assert len(rows) == 10 and all("% (" in row for row in rows)
