@@ -133,3 +133,15 @@ def test_the_windy_variant_rewards_knowing_or_learning_the_wind() -> None:
     blind = _capture_rate(lambda env: BallisticOracle(env.scene), 4)
     adaptive = _capture_rate(lambda env: AdaptiveOracle(env.scene), 4)
     assert informed >= 0.9 and blind <= 0.6 and adaptive > blind
+
+
+def test_shipped_windy_model_loads_and_reads_the_windy_observation() -> None:
+    pytest.importorskip("stable_baselines3")
+    from agents.policies import PRETRAINED_WINDY, load_policy
+
+    model = load_policy(PRETRAINED_WINDY)
+    env = gym.make("NetCatchWindy-v0")
+    obs, _ = env.reset(seed=0)
+    assert model.observation_space == env.observation_space
+    action, _ = model.predict(obs, deterministic=True)
+    assert env.action_space.contains(action)
