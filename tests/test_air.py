@@ -104,15 +104,3 @@ def test_bad_air_is_refused() -> None:
         load_scene("basket").replace({"air.density": -1.0})
     with pytest.raises(ConfigError, match="air.wind"):
         load_scene("basket").replace({"air.wind": [1.0, 2.0]})
-
-
-def test_wind_power_bound_holds_for_any_velocity() -> None:
-    """The drag force's power F.v never exceeds air.wind_power_bound (random velocities, winds)."""
-    rng = np.random.default_rng(1)
-    k, mass = 0.08, 1.3
-    for _ in range(20000):
-        wind, v = rng.normal(0, 3, 3), rng.normal(0, 3, 3) * rng.uniform(0, 2)
-        u = v - wind
-        power = -mass * k * np.linalg.norm(u) * u @ v
-        assert power <= air.wind_power_bound(mass, k, wind) + 1e-12
-    assert air.wind_power_bound(mass, k, CALM) == 0.0 and air.wind_power_bound(mass, 0.0, np.ones(3)) == 0.0
