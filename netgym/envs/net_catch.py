@@ -17,8 +17,7 @@ from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
-from netgym.launch import (Thrower, action_to_launch, action_to_velocity, launch_velocity, opening_miss_distance,
-                           sample_thrower)
+from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
 from netgym.physics.frames import FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
@@ -253,16 +252,15 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         Bad options raise a ValueError (or ConfigError) and leave the env as it was.
         """
         options = self._check_options(options)
-        changes = dict(options.get("overrides", self._overrides))
-        self._base_scene.replace(changes)  # a bad override fails here, before any change
+        overrides = dict(options.get("overrides", self._overrides))
+        scene = self._base_scene.replace(overrides) if overrides else self._base_scene  # bad overrides fail here
         super().reset(seed=seed)
         self._draws = {} if self.randomize is None else self.randomize.draw(self.np_random)
-        changes.update(self._draws)
+        drawn: dict[str, Any] = dict(self._draws)
         if self.wind_range is not None:
-            changes["air.wind"] = self.wind_range.draw(self.np_random).tolist()
-        scene = self._base_scene.replace(changes)
-        self._set_scene(scene)
-        self._overrides = dict(options.get("overrides", self._overrides))
+            drawn["air.wind"] = self.wind_range.draw(self.np_random).tolist()
+        self._set_scene(scene.replace(drawn) if drawn else scene)
+        self._overrides = overrides
         self.sim.reset()
         self._last_throw = np.zeros(FEEDBACK_SIZE)
         self._throws_done = 0
@@ -329,22 +327,18 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if self._ended:
             raise EpisodeEndedError(f"the episode ended after its {self.balls_per_episode} throws "
                                     f"(balls_per_episode); call reset() before step()")
-        aimed = self.action_velocity(action)
-        velocity = aimed if self.launch_noise is None else self._released(action)
+        intended = self._intended_launch(action)
+        aimed = launch_velocity(*intended, self.thrower)
+        velocity = aimed if self.launch_noise is None else \
+            launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
         observer = self._record_frame if self._frame_clock is not None else None
         result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frames=self._frame_clock,
                                 settle_frames=self.render_settling)
         return self.after_throw(launch, velocity, result, aimed)
 
-    def _released(self, action: np.ndarray) -> np.ndarray:
-        """The launch velocity of a (valid) action after the launch noise."""
-        assert self.launch_noise is not None and self.thrower is not None
-        intended = action_to_launch(np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0), self.scene.throw)
-        return launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
-
-    def action_velocity(self, action: np.ndarray) -> np.ndarray:
-        """Validate an action and map it to a launch velocity for the current thrower."""
+    def _intended_launch(self, action: np.ndarray) -> tuple[float, float, float]:
+        """Validate an action; its (speed, elevation, azimuth offset), values clipped to [-1, 1]."""
         a = np.asarray(action)
         if a.dtype.kind not in "fiu":
             raise ValueError(f"action must be an array of real numbers, got {a.dtype} values: {action!r}")
@@ -353,8 +347,13 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError(f"action must have shape (3,), got {a.shape}")
         if not np.all(np.isfinite(a)):
             raise ValueError(f"action must be finite, got {a.tolist()}")
+        return action_to_launch(np.clip(a, -1.0, 1.0), self.scene.throw)
+
+    def action_velocity(self, action: np.ndarray) -> np.ndarray:
+        """Validate an action and map it to a launch velocity for the current thrower (before
+        any launch noise)."""
         assert self.thrower is not None
-        return action_to_velocity(np.clip(a, -1.0, 1.0), self.thrower, self.scene.throw)
+        return launch_velocity(*self._intended_launch(action), self.thrower)
 
     def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
                     aimed: np.ndarray | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
