@@ -85,6 +85,7 @@ def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, m
     RK4 steps of at most ``max_step`` while airborne, the ground bounce where its lowest point
     reaches the ground (the step is cut at the contact), sliding once it no longer bounces."""
     left = tau
+    start_p, start_v = np.empty(3), np.empty(3)   # the step's start, kept to cut it at the ground
     while left > 1e-15:
         h = min(max_step, left)
         if p[2] <= radius + 1e-12 and abs(v[2]) <= 1e-12:   # on the ground, not bouncing: sliding
@@ -94,7 +95,8 @@ def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, m
             p[1] += h * v[1]
             left -= h
             continue
-        start_p, start_v = p.copy(), v.copy()
+        start_p[:] = p
+        start_v[:] = v
         rk4_step(p, v, h, gravity, k, wind)
         if p[2] < radius and v[2] < 0.0:
             # cut the step where the ball meets the ground (Newton on the height), then bounce
@@ -136,9 +138,10 @@ def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t
     of the flight nearest the plane (on the side it came from) and False."""
     q, u = p.copy(), v.copy()
     nearest = q.copy()
+    before_q = np.empty(3)
     t = 0.0
     while t < t_max:
-        before_q = q.copy()
+        before_q[:] = q
         rk4_step(q, u, step, gravity, k, wind)
         t += step
         h0 = inwards * (value - before_q[axis])   # > 0: still before the plane
