@@ -116,6 +116,8 @@ class SimulationConfig:
 
     ``max_ball_travel`` is the largest distance, as a fraction of the ball radius, that a ball
     may move relative to the net in one substep; longer steps are split (no tunnelling).
+    ``rest_speed`` (m/s) is what counts as at rest: for a ball whose outcome waits on it (with
+    what is near it, for 0.1 s), and for the net and balls settling between two throws.
     """
 
     integrator: str = _choice(*INTEGRATORS)

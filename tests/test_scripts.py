@@ -84,3 +84,12 @@ def test_variants_table_quick_prints_every_agent() -> None:
     out = _run("scripts/variants_table.py", "--quick", "--workers", "1")
     rows = [line for line in out.splitlines() if line.startswith("| NetCatch")]
     assert len(rows) == 10 and all("% (" in row for row in rows)
+
+
+def test_episode_agreement_quick_compares_every_throw() -> None:
+    out = _run("scripts/episode_agreement.py", "--quick", "--balls", "3")
+    rows = {tuple(cell.strip() for cell in line.split("|")[1:3]): line.split("|")
+            for line in out.splitlines() if line.startswith("| 1 (empty net)") or line.startswith("| 2..N")}
+    assert int(rows[("1 (empty net)", "all")][3]) == 2  # one first throw per episode
+    assert int(rows[("2..N", "all")][3]) == 4            # throws 2 and 3 of both episodes
+    assert "faster" in out

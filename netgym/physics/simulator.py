@@ -32,8 +32,7 @@ from netgym.physics.stepping import new_counters
 from netgym.physics.throws import Throw, ThrowResult
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
-RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing ...
-RELAX_DISPLACEMENT = 1e-3     # m ... by more than this (1 cm/s: slow creep of balls on a sloped net is at rest)
+RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing faster than simulation.rest_speed
 MAX_LAUNCH_SPEED = 100.0      # m/s
 SETTLE_TIME = 60.0            # s: the most simulated time the settling of a new net may take
 
@@ -247,8 +246,8 @@ class Simulator:
 
         Dynamic relaxation with the scene's own integrator and ``dt`` (so the result is an
         equilibrium of exactly the dynamics that follow): all velocities are zeroed whenever the
-        kinetic energy has passed a peak, until no body moves more than RELAX_DISPLACEMENT over
-        RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it does not settle within
+        kinetic energy has passed a peak, until no body moves more than ``simulation.rest_speed``
+        times RELAX_WINDOW over RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it does not settle within
         ``max_time`` simulated seconds.
         """
         self.run(self.relax_plan(max_time))
@@ -261,6 +260,7 @@ class Simulator:
         dt = self.dt if dt is None else dt
         steps = max(1, round(CHUNK_SECONDS / dt))
         previous = math.inf
+        rest_displacement = self.config.simulation.rest_speed * RELAX_WINDOW
         started = self.state.time
         window_start, window_time = self.state.x.copy(), self.state.time
         while self.state.time - started < max_time:
@@ -271,7 +271,7 @@ class Simulator:
                 kinetic = 0.0
             previous = kinetic
             if self.state.time - window_time >= RELAX_WINDOW - 1e-12:
-                if float(np.abs(self.state.x - window_start).max(initial=0.0)) < RELAX_DISPLACEMENT:
+                if float(np.abs(self.state.x - window_start).max(initial=0.0)) < rest_displacement:
                     self.sleep()
                     return
                 window_start, window_time = self.state.x.copy(), self.state.time
