@@ -4,30 +4,71 @@ pipeline (0.5 ms, every throw simulated to its time limit, the pause relaxed to 
 the same throwers and actions: half noisy-oracle episodes, half random. Throws 2..N meet the
 net and the balls as each pipeline left them.
 
+The reference is computed once and stored (``--reference``, JSON); later runs reuse it, so
+other settings can be compared against it cheaply with ``--candidate``.
+
 Usage::
 
     python scripts/episode_agreement.py                  # 250 episodes: 1000 throws at positions 2..5
-    python scripts/episode_agreement.py --quick          # 2 episodes, for smoke tests
+    python scripts/episode_agreement.py --candidate simulation.rest_speed=0.03
+    python scripts/episode_agreement.py --quick          # 2 3-ball episodes, nothing stored, for smoke tests
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+from pathlib import Path
 
-from netgym.bench.episode_agreement import episode_agreement, to_markdown
+from netgym.bench.episode_agreement import TABLE_HEADER, agreement_rows, load, reference, run_pipeline, save
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _overrides(text: str) -> dict:
+    """``"a.b=1,c.d=x"`` as a dict of overrides (values read as JSON where they parse)."""
+    out = {}
+    for item in text.split(","):
+        key, _, value = item.partition("=")
+        try:
+            out[key] = json.loads(value)
+        except json.JSONDecodeError:
+            out[key] = value
+    return out
 
 
 def main() -> None:
-    """Parse arguments, run both pipelines, print the agreement table."""
+    """Parse arguments, get the reference, run the default and the candidates, print the table."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--quick", action="store_true", help="2 episodes, for smoke tests")
+    parser.add_argument("--quick", action="store_true", help="2 3-ball episodes, reference not stored")
     parser.add_argument("--episodes", type=int, default=250)
     parser.add_argument("--balls", type=int, default=5, help="throws per episode")
     parser.add_argument("--scene", default="basket")
     parser.add_argument("--workers", type=int, default=2, help="processes")
+    parser.add_argument("--reference", type=Path, default=ROOT / "docs" / "figures" / "episode_reference.json")
+    parser.add_argument("--recompute", action="store_true", help="recompute the stored reference")
+    parser.add_argument("--candidate", action="append", default=[], metavar="FIELD=VALUE[,FIELD=VALUE]",
+                        help="scene overrides of a pipeline to compare too (repeatable)")
     args = parser.parse_args()
-    pairs = episode_agreement(args.scene, 2 if args.quick else args.episodes, args.balls, workers=args.workers)
-    print(to_markdown(pairs))
+    if args.quick:
+        scene, reference_episodes = args.scene, reference(args.scene, 2, 3, workers=args.workers)
+    elif args.reference.exists() and not args.recompute:
+        scene, reference_episodes = load(args.reference)
+    else:
+        scene = args.scene
+        reference_episodes = reference(scene, args.episodes, args.balls, workers=args.workers)
+        save(reference_episodes, args.reference, scene)
+    balls = len(reference_episodes[0].captured)
+    rows = list(TABLE_HEADER)
+    for label in ["default", *args.candidate]:
+        overrides = {} if label == "default" else _overrides(label)
+        candidate = run_pipeline(scene, balls, reference_episodes, True, overrides, args.workers)
+        rows += agreement_rows(label, candidate, reference_episodes)
+    print("\n".join(rows))
+    throws = sum(len(e.captured) for e in reference_episodes)
+    seconds = sum(e.seconds for e in reference_episodes)
+    print(f"\nReference: {len(reference_episodes)} {scene} episodes of {balls} throws, "
+          f"{throws / seconds:.2f} throws/s.")
 
 
 if __name__ == "__main__":

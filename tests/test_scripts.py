@@ -87,9 +87,11 @@ def test_variants_table_quick_prints_every_agent() -> None:
 
 
 def test_episode_agreement_quick_compares_every_throw() -> None:
-    out = _run("scripts/episode_agreement.py", "--quick", "--balls", "3")
-    rows = {tuple(cell.strip() for cell in line.split("|")[1:3]): line.split("|")
-            for line in out.splitlines() if line.startswith("| 1 (empty net)") or line.startswith("| 2..N")}
-    assert int(rows[("1 (empty net)", "all")][3]) == 2  # one first throw per episode
-    assert int(rows[("2..N", "all")][3]) == 4            # throws 2 and 3 of both episodes
-    assert "faster" in out
+    out = _run("scripts/episode_agreement.py", "--quick", "--candidate", "simulation.rest_speed=0.02")
+    rows = {tuple(cell.strip() for cell in line.split("|")[1:4]): line.split("|") for line in out.splitlines()
+            if line.startswith("| default") or line.startswith("| simulation.rest_speed=0.02")}
+    for pipeline in ("default", "simulation.rest_speed=0.02"):
+        assert int(rows[(pipeline, "1", "all")][4]) == 2       # one first throw in each of the 2 episodes
+        assert int(rows[(pipeline, "2..N", "all")][4]) == 4    # throws 2 and 3 of both
+        assert float(rows[(pipeline, "2..N", "all")][7]) > 0   # throws/s
+    assert "Reference: 2 basket episodes of 3 throws" in out

@@ -1,18 +1,23 @@
 """Do the shortcuts change episodes? Outcomes of the same seeded episodes (same throwers, same
-actions) in the default pipeline and in a reference pipeline: a fine dt, the pause between
-throws relaxed to a ten times stricter rest test, and every throw simulated in full to the
-time limit (no fast path). Throw 1 meets the settled empty net in both; throws 2..N meet the
-net as each pipeline left it, so they test the pause and everything before it too.
+actions) in a pipeline under test and in a reference pipeline: a fine dt, the pause between
+throws relaxed to a ten times stricter rest test, and every throw simulated in full to the time
+limit (no fast path). Throw 1 meets the settled empty net in both; throws 2..N meet the net as
+each pipeline left it, so they test the pause and everything before it too.
 
 Half the episodes are thrown by the ballistic oracle with Gaussian noise on its actions (so
-rim hits and near misses occur), half with uniform-random actions.
+rim hits and near misses occur), half with uniform-random actions. The oracle reads only the
+thrower's place, which both pipelines draw alike, so the reference's actions are replayed as
+they are in every pipeline under test; the reference is computed once and stored as JSON.
 """
 
 from __future__ import annotations
 
+import json
 import time
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any, Mapping
 
 import numpy as np
 from tqdm import tqdm
@@ -20,101 +25,115 @@ from tqdm import tqdm
 from netgym.bench.throws import ballistic_oracle
 from netgym.envs import NetCatchEnv
 
-REFERENCE_DT = 5e-4           # s, a quarter of the default
-REFERENCE_REST_SPEED = 1e-3   # m/s (the default pipeline: 1e-2; at 1e-4 a resting ball and the net under it keep a stick-slip cycle of ~0.4 mm/s at this dt)
-ACTION_NOISE = 0.15           # standard deviation of the noise on the oracle's actions
+REFERENCE_OVERRIDES = {
+    "simulation.dt": 5e-4,           # s, a quarter of the default
+    "simulation.rest_speed": 1e-3,   # m/s (default 1e-2; at 1e-4 a resting ball and the net under it
+                                     # keep a stick-slip cycle of ~0.4 mm/s at this dt, and never pass)
+}
+ACTION_NOISE = 0.15                  # standard deviation of the noise on the oracle's actions
 
 
 @dataclass(frozen=True)
-class EpisodePair:
-    """One seeded episode in both pipelines: per throw, captured in each, and the wall times."""
+class Episode:
+    """One seeded episode as a pipeline ran it: its actions, whether each throw was caught, and
+    the wall seconds of its steps."""
 
+    seed: int
     policy: str
-    fast: list[bool]
-    reference: list[bool]
-    fast_seconds: float
-    reference_seconds: float
+    actions: list[list[float]]
+    captured: list[bool]
+    seconds: float
 
 
-def _actions(episode: int, seed: int, observations: list[np.ndarray], oracle) -> np.ndarray:
-    """The action of throw ``len(observations) - 1``: noisy oracle in even episodes, random in odd."""
-    rng = np.random.default_rng([seed, episode, len(observations)])
-    if episode % 2:
+def _action(rng: np.random.Generator, noisy_oracle: bool, observation: np.ndarray, oracle) -> np.ndarray:
+    if not noisy_oracle:
         return rng.uniform(-1.0, 1.0, 3).astype(np.float32)
-    action = oracle.predict(observations[-1])[0] + rng.normal(0.0, ACTION_NOISE, 3)
+    action = oracle.predict(observation)[0] + rng.normal(0.0, ACTION_NOISE, 3)
     return np.clip(action, -1.0, 1.0).astype(np.float32)
 
 
-def _run(env: NetCatchEnv, episode: int, seed: int, actions: list[np.ndarray] | None,
-         oracle) -> tuple[list[bool], list[np.ndarray], list[np.ndarray], float]:
-    """Run one episode; with ``actions`` None, choose them (and return them), else replay them.
-    Returns (captured per throw, actions, launch positions, wall seconds)."""
-    obs, _ = env.reset(seed=seed + episode)
-    chosen = actions if actions is not None else []
-    captured, launches, done, k = [], [], False, 0
-    observations = [obs]
-    start = time.perf_counter()
+def _run(env: NetCatchEnv, seed: int, policy: str, actions: list[list[float]] | None, oracle) -> Episode:
+    """Run the episode seeded ``seed``, replaying ``actions``, or choosing them by ``policy``
+    (``"noisy oracle"`` or ``"random"``) when None."""
+    obs, _ = env.reset(seed=seed)
+    rng = np.random.default_rng(seed)
+    chosen = [] if actions is None else actions
+    captured, seconds, done = [], 0.0, False
     while not done:
         if actions is None:
-            chosen.append(_actions(episode, seed, observations, oracle))
-        obs, _, done, _, info = env.step(chosen[k])
-        observations.append(obs)
+            chosen.append(_action(rng, policy == "noisy oracle", obs, oracle).tolist())
+        start = time.perf_counter()
+        obs, _, done, _, info = env.step(np.array(chosen[len(captured)], dtype=np.float32))
+        seconds += time.perf_counter() - start
         captured.append(bool(info["captured"]))
-        launches.append(np.asarray(info["launch_position"]))
-        k += 1
-    return captured, chosen, launches, time.perf_counter() - start
+    return Episode(seed, policy, chosen, captured, seconds)
 
 
-def _pairs(job: tuple[str, list[int], int, int, bool]) -> list[EpisodePair]:
-    scene, episodes, balls, seed, progress = job
-    fast_env = NetCatchEnv(scene=scene, balls_per_episode=balls)
-    reference_env = NetCatchEnv(scene=scene, balls_per_episode=balls, fast=False,
-                                overrides={"simulation.dt": REFERENCE_DT,
-                                           "simulation.rest_speed": REFERENCE_REST_SPEED})
+def _episodes(job: tuple[str, int, bool, Mapping[str, Any], list[Episode | int], bool]) -> list[Episode]:
+    scene, balls, fast, overrides, todo, progress = job
+    env = NetCatchEnv(scene=scene, balls_per_episode=balls, fast=fast, overrides=dict(overrides))
     oracle = ballistic_oracle(scene)
-    _run(fast_env, 0, seed - 1, None, oracle)  # compile the kernels outside the timed episodes
-    pairs = []
-    for episode in tqdm(episodes, desc=f"{scene} episodes in both pipelines", unit="episode", disable=not progress):
-        fast, actions, launches, fast_seconds = _run(fast_env, episode, seed, None, oracle)
-        reference, _, reference_launches, reference_seconds = _run(reference_env, episode, seed, actions, oracle)
-        if not np.array_equal(np.array(launches), np.array(reference_launches)):
-            raise RuntimeError(f"episode {episode}: the two pipelines drew different throwers")
-        pairs.append(EpisodePair("noisy oracle" if episode % 2 == 0 else "random", fast, reference,
-                                 fast_seconds, reference_seconds))
-    return pairs
+    _run(env, 0, "noisy oracle", None, oracle)  # compile the kernels outside the timed episodes
+    done = []
+    for item in tqdm(todo, desc=f"{scene}, {'fast' if fast else 'full'} {dict(overrides)}", unit="episode",
+                     disable=not progress):
+        if isinstance(item, Episode):
+            done.append(_run(env, item.seed, item.policy, item.actions, oracle))
+        else:
+            done.append(_run(env, item, "noisy oracle" if item % 2 == 0 else "random", None, oracle))
+    return done
 
 
-def episode_agreement(scene: str, episodes: int, balls: int, seed: int = 50_000,
-                      workers: int = 2) -> list[EpisodePair]:
-    """``episodes`` seeded episodes of ``balls`` throws in both pipelines, shared by ``workers``
-    processes (the first shows a progress bar)."""
-    parts = [list(range(w, episodes, workers)) for w in range(workers)]
-    jobs = [(scene, part, balls, seed, w == 0) for w, part in enumerate(parts) if part]
+def run_pipeline(scene: str, balls: int, todo: list[Episode] | list[int], fast: bool = True,
+                 overrides: Mapping[str, Any] | None = None, workers: int = 2) -> list[Episode]:
+    """Run ``todo`` (seeds, to choose the actions; or episodes, to replay theirs) in the pipeline
+    ``fast``/``overrides``, shared by ``workers`` processes (the first shows a progress bar)."""
+    parts = [todo[w::workers] for w in range(workers)]
+    jobs = [(scene, balls, fast, dict(overrides or {}), part, w == 0) for w, part in enumerate(parts) if part]
     if len(jobs) == 1:
-        return _pairs(jobs[0])
+        return _episodes(jobs[0])
     with ProcessPoolExecutor(len(jobs)) as pool:
-        return [pair for part in pool.map(_pairs, jobs) for pair in part]
+        results = list(pool.map(_episodes, jobs))
+    order = {episode.seed: episode for part in results for episode in part}
+    return [order[item.seed if isinstance(item, Episode) else item] for item in todo]
 
 
-def to_markdown(pairs: list[EpisodePair]) -> str:
-    """Agreement by throw position and by policy, with the wall time of each pipeline."""
+def reference(scene: str, episodes: int, balls: int, seed: int = 50_000, workers: int = 2) -> list[Episode]:
+    """The reference pipeline on ``episodes`` episodes seeded ``seed, seed + 1, ...``."""
+    return run_pipeline(scene, balls, list(range(seed, seed + episodes)), False, REFERENCE_OVERRIDES, workers)
+
+
+def save(episodes: list[Episode], path: Path, scene: str) -> None:
+    """Store episodes as JSON, with the scene and the reference settings."""
+    path.write_text(json.dumps({"scene": scene, "reference_overrides": REFERENCE_OVERRIDES,
+                                "episodes": [asdict(e) for e in episodes]}) + "\n")
+
+
+def load(path: Path) -> tuple[str, list[Episode]]:
+    """(scene, episodes) stored by :func:`save`."""
+    data = json.loads(path.read_text())
+    return data["scene"], [Episode(**e) for e in data["episodes"]]
+
+
+def agreement_rows(label: str, candidate: list[Episode], reference_episodes: list[Episode]) -> list[str]:
+    """Markdown rows: agreement of ``candidate`` with the reference on throw 1 and on throws
+    2..N, per policy and for all, with the candidate's throws per second."""
     from agents.evaluation import wilson_interval
 
-    lines = ["| throws | policy | compared | agree | 95% CI | captured (default / reference) |",
-             "|---|---|---:|---:|---|---|"]
-    for label, first, last in (("1 (empty net)", 0, 1), ("2..N", 1, None)):
+    rows = []
+    seconds = sum(e.seconds for e in candidate)
+    rate = sum(len(e.captured) for e in candidate) / seconds
+    for positions, first, last in (("1", 0, 1), ("2..N", 1, None)):
         for policy in ("noisy oracle", "random", "all"):
-            chosen = [p for p in pairs if policy in ("all", p.policy)]
-            got = [(f, r) for p in chosen for f, r in zip(p.fast[first:last], p.reference[first:last])]
-            agree = sum(f == r for f, r in got)
-            low, high = wilson_interval(agree, len(got))
-            lines.append(f"| {label} | {policy} | {len(got)} | {100 * agree / max(len(got), 1):.2f}% | "
-                         f"{100 * low:.2f}-{100 * high:.2f}% | {sum(f for f, _ in got)} / {sum(r for _, r in got)} |")
-    fast = sum(p.fast_seconds for p in pairs)
-    reference = sum(p.reference_seconds for p in pairs)
-    throws = sum(len(p.fast) for p in pairs)
-    lines.append("")
-    lines.append(f"Wall time over {throws} throws: default pipeline {fast:.1f} s ({throws / fast:.1f} throws/s), "
-                 f"reference {reference:.1f} s ({throws / reference:.2f} throws/s): the default is "
-                 f"{reference / fast:.0f}x faster.")
-    return "\n".join(lines)
+            pairs = [(c, r) for got, ref in zip(candidate, reference_episodes) if policy in ("all", ref.policy)
+                     for c, r in zip(got.captured[first:last], ref.captured[first:last])]
+            agree = sum(c == r for c, r in pairs)
+            low, high = wilson_interval(agree, len(pairs))
+            rows.append(f"| {label} | {positions} | {policy} | {len(pairs)} | {100 * agree / max(len(pairs), 1):.2f}% "
+                        f"({100 * low:.2f}-{100 * high:.2f}%) | {sum(c for c, _ in pairs)} / {sum(r for _, r in pairs)} "
+                        f"| {rate:.1f} |")
+    return rows
+
+
+TABLE_HEADER = ["| pipeline | throws | policy | compared | agree (95% CI) | caught (pipeline / reference) | throws/s |",
+                "|---|---|---|---:|---|---|---:|"]
