@@ -10,6 +10,7 @@ import pytest
 
 from netgym.bench.fast_path import compare, summarise
 from netgym.bench.throws import sample_throws
+from netgym import launch
 from netgym.config import ConfigError, load_scene
 from netgym.physics import air, flight
 from netgym.physics.model import ball_drag_constant
@@ -104,3 +105,26 @@ def test_bad_air_is_refused() -> None:
         load_scene("basket").replace({"air.density": -1.0})
     with pytest.raises(ConfigError, match="air.wind"):
         load_scene("basket").replace({"air.wind": [1.0, 2.0]})
+
+
+def test_flight_path_without_drag_is_the_parabola_until_it_lands() -> None:
+    p0, v0, g, step = np.array([0.0, 0.0, 1.8]), np.array([5.0, 1.0, 6.0]), -9.81, 5e-3
+    points = air.flight_path(p0, v0, g, 0.0, CALM, 0.3, step, 10.0)
+    t = step * np.arange(len(points))[:, None]
+    assert np.abs(points - (p0 + v0 * t + 0.5 * np.array([0.0, 0.0, g]) * t * t)).max() < 1e-9
+    assert points[-1, 2] < 0.3 <= points[-2, 2]  # stops at the first sample under the ball radius
+
+
+def test_shaped_reward_distance_follows_the_air_and_the_wind() -> None:
+    """A throw that falls short of the opening in still air comes closer with a tailwind, and
+    further with a headwind; with vanishing drag the distance is the parabola's."""
+    sim = Simulator("basket")
+    opening, r = sim.opening, sim.model.ball_radius
+    position, velocity = np.array([-5.0, 0.0, 1.8]), np.array([3.0, 0.0, 6.0])  # lands about 1 m short
+    parabola = launch.opening_miss_distance(position, velocity, opening, -9.81, r)
+    assert launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=1e-12) == pytest.approx(
+        parabola, abs=2e-3)
+    still = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05)
+    tail = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05, wind=np.array([3.0, 0, 0]))
+    head = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05, wind=np.array([-3.0, 0, 0]))
+    assert parabola < still and tail < still < head

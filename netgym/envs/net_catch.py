@@ -98,8 +98,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     ## Rewards
 
     ``sparse`` (default): +1 for a captured ball, 0 otherwise. ``shaped``: a miss also earns
-    ``0.5 * exp(-d / 1 m)``, where ``d`` is the closest distance between the ball's launch
-    parabola and the opening rectangle (bounded in [0, 0.5], so a capture is always better).
+    ``0.5 * exp(-d / 1 m)``, where ``d`` is the closest distance between the ball's free flight
+    (the launch parabola; through the air and wind when the scene has air) and the opening rectangle (bounded in [0, 0.5], so a capture is always better).
 
     ## Starting state
 
@@ -363,8 +363,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._caught += int(result.captured)
         reward = 1.0 if result.captured else 0.0
         if self.reward_mode == "shaped" and not result.captured:
-            miss = opening_miss_distance(launch, velocity, self.sim.opening,
-                                         self.sim.model.gravity, self.sim.model.ball_radius)
+            m = self.sim.model
+            miss = opening_miss_distance(launch, velocity, self.sim.opening, m.gravity, m.ball_radius,
+                                         drag=m.ball_drag, wind=m.wind)
             reward = SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
         if self.feedback:
             self._last_throw = throw_feedback(self.sim, launch, velocity, result.captured)

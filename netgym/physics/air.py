@@ -131,6 +131,25 @@ def max_acceleration(speed: float, gravity: float, k: float, wind: np.ndarray) -
 
 
 @njit(cache=True)
+def flight_path(p, v, gravity, k, wind, radius, step, t_max):
+    """The positions of a lone ball's free flight from ``p``, ``v`` through air every ``step``
+    seconds, from the launch until its lowest point first reaches the ground (that point
+    included) or ``t_max``: an (n, 3) array."""
+    count = int(t_max / step) + 1
+    points = np.empty((count + 1, 3))
+    q, u = p.copy(), v.copy()
+    points[0] = q
+    n = 1
+    while n <= count:
+        rk4_step(q, u, step, gravity, k, wind)
+        points[n] = q
+        n += 1
+        if q[2] < radius and u[2] < 0.0:
+            break
+    return points[:n]
+
+
+@njit(cache=True)
 def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t_max):
     """Where a lone ball's free flight from ``p``, ``v`` (through air, until its lowest point
     first reaches the ground or ``t_max``) crosses the plane ``x[axis] = value`` moving the way
