@@ -65,7 +65,10 @@ def test_info_books_the_settling_and_the_throw() -> None:
     oracle = BallisticOracle(env.scene)
     obs, _ = env.reset(seed=3)
     obs, _, _, _, first = env.step(oracle.predict(obs)[0])
-    assert first["captured"] and first["settle_substeps"] == 0
-    _, _, _, _, second = env.step(oracle.predict(obs)[0])
-    assert second["settle_substeps"] > 0 and second["settle_time"] > 0.0
-    assert second["substeps"] == second["settle_substeps"] + second["throw_substeps"]
+    assert first["captured"] and first["settle_substeps"] > 0 and first["settle_time"] > 0.0  # settles for the next
+    assert first["substeps"] == first["settle_substeps"] + first["throw_substeps"]
+    assert not env.sim.awake  # the observation shows the caught ball at rest
+    obs, _, _, _, second = env.step(oracle.predict(obs)[0])
+    _, _, done, _, last = env.step(oracle.predict(obs)[0])
+    assert second["captured"] and second["settle_substeps"] > 0
+    assert done and last["captured"] and last["settle_substeps"] == 0  # no pause after the episode's last throw

@@ -90,7 +90,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | 3 | sine of the thrower's bearing | - |
     | 4 | balls caught so far / balls per episode | - |
     | 5 | throws left / balls per episode | - |
-    | 6 | height of the highest caught ball minus the opening centre's height (the net's lowest point when none) | m |
+    | 6 | height of the highest caught ball, at rest, minus the opening centre's height (the net's lowest point when none) | m |
     | 7 | ``feedback=True`` only: the previous throw was caught (0 or 1; 0 before the first) | - |
     | 8, 9 | feedback: where the previous throw's free flight crossed the opening's plane, minus its centre, along the plane's two axes (world x, y for the basket; y, z for the goal), clipped to +-10 | m |
     | 10 | feedback: how far short of the opening's plane that flight stayed (0 when it crossed) | m |
@@ -117,7 +117,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     ``captured`` (bool, by the scene's ``capture_rule``), ``reason`` (how the outcome was
     decided), ``final_position`` of the ball, ``sim_time`` (simulated seconds of the throw),
     ``substeps`` (every integration substep the step took), split into ``throw_substeps`` and
-    ``settle_substeps`` (bringing the net to rest after the previous throw, ``settle_time``
+    ``settle_substeps`` (bringing the net and the balls in it to rest after this throw, for the
+    next one: the pause between throws, none after an episode's last throw; ``settle_time``
     simulated seconds), ``launch_position`` and ``launch_velocity``.
 
     ## Arguments
@@ -335,7 +336,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         observer = self._record_frame if self._frame_clock is not None else None
         result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frames=self._frame_clock,
                                 settle_frames=self.render_settling)
-        return self.after_throw(launch, velocity, result, aimed)
+        pause = None
+        if self._throws_done + 1 < self.balls_per_episode:  # the net settles for the next throw (none after the last)
+            pause = self.sim.run(self.sim.pause_plan(self._frame_clock, self.render_settling), observer)
+        return self.after_throw(launch, velocity, result, aimed, pause)
 
     def _intended_launch(self, action: np.ndarray) -> tuple[float, float, float]:
         """Validate an action; its (speed, elevation, azimuth offset), values clipped to [-1, 1]."""
@@ -356,9 +360,13 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         return launch_velocity(*self._intended_launch(action), self.thrower)
 
     def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
-                    aimed: np.ndarray | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
+                    aimed: np.ndarray | None = None,
+                    pause: Mapping[str, float] | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
         """Book a finished throw: reward, episode end, next thrower, observation and info
-        (``aimed``: the velocity the action meant, before launch noise)."""
+        (``aimed``: the velocity the action meant, before launch noise; ``pause``: what
+        :meth:`~netgym.physics.simulator.Simulator.pause_plan` returned after the throw)."""
+        settle_substeps = result.settle_substeps + (pause["settle_substeps"] if pause else 0)
+        settle_time = result.settle_time + (pause["settle_time"] if pause else 0.0)
         self._throws_done += 1
         self._caught += int(result.captured)
         reward = 1.0 if result.captured else 0.0
@@ -375,8 +383,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
         info = {"captured": result.captured, "reason": result.reason,
                 "final_position": result.final_position, "sim_time": result.time,
-                "substeps": result.settle_substeps + result.substeps, "throw_substeps": result.substeps,
-                "settle_substeps": result.settle_substeps, "settle_time": result.settle_time,
+                "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
+                "settle_substeps": settle_substeps, "settle_time": settle_time,
                 "launch_position": launch, "launch_velocity": velocity,
                 "aimed_velocity": velocity if aimed is None else aimed, "wind": self.sim.model.wind.copy(),
                 "scene_draws": dict(self._draws)}

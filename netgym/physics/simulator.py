@@ -277,6 +277,18 @@ class Simulator:
                 window_start, window_time = self.state.x.copy(), self.state.time
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
+    def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
+        """The pause between two throws, as a plan: :meth:`relax_plan` if the scene still moves,
+        else nothing. Returns ``{"settle_substeps": ..., "settle_time": ...}``, the substeps and
+        simulated seconds it took. With ``frames`` and ``film`` its chunks end at the clock's
+        instants; with ``frames`` alone the clock is paused over it (restart it at the launch)."""
+        substeps, time = self.substeps, self.state.time
+        if self.awake:
+            if frames is not None and not film:
+                frames.pause()
+            yield from self.relax_plan(frames=frames if film else None)
+        return {"settle_substeps": self.substeps - substeps, "settle_time": self.state.time - time}
+
     def throw(self, position: Any, velocity: Any, fast: bool = True,
               observer: Callable[["Simulator"], None] | None = None, frames: FrameClock | None = None,
               settle_frames: bool = False) -> ThrowResult:

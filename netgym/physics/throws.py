@@ -98,17 +98,11 @@ class Throw:
         """The throw as a plan; it returns the :class:`ThrowResult`. The net is first brought to
         rest if it still moves. A captured ball stays in the scene; a missed one is removed."""
         sim = self.sim
-        substeps, time = sim.substeps, sim.state.time
-        filmed = self.frames is not None and self.settle_frames
-        if sim.awake:
-            if self.frames is not None and not filmed:
-                self.frames.pause()
-            yield from sim.relax_plan(frames=self.frames if filmed else None)
-        settled = {"settle_substeps": sim.substeps - substeps, "settle_time": sim.state.time - time}
+        settled = yield from sim.pause_plan(self.frames, self.settle_frames)
         start = sim.state.copy()
         ball = sim.launch_ball(self.position, self.velocity)
         if self.frames is not None:
-            if not filmed:
+            if not self.settle_frames:
                 self.frames.restart(sim.state.time)
             yield Tick()  # the launch
         try:
