@@ -128,3 +128,15 @@ def test_shaped_reward_distance_follows_the_air_and_the_wind() -> None:
     tail = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05, wind=np.array([3.0, 0, 0]))
     head = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05, wind=np.array([-3.0, 0, 0]))
     assert parabola < still and tail < still < head
+
+
+def test_wind_power_bound_holds_for_any_velocity() -> None:
+    """The drag force's power F.v never exceeds air.wind_power_bound (random velocities, winds)."""
+    rng = np.random.default_rng(1)
+    k, mass = 0.08, 1.3
+    for _ in range(20000):
+        wind, v = rng.normal(0, 3, 3), rng.normal(0, 3, 3) * rng.uniform(0, 2)
+        u = v - wind
+        power = -mass * k * np.linalg.norm(u) * u @ v
+        assert power <= air.wind_power_bound(mass, k, wind) + 1e-12
+    assert air.wind_power_bound(mass, k, CALM) == 0.0 and air.wind_power_bound(mass, 0.0, np.ones(3)) == 0.0

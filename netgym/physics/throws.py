@@ -169,7 +169,7 @@ class Throw:
                 continue
             local, others, lo, hi = self._survey(row, AWAKE_MARGIN)
             rest_since = (s.time if rest_since is None else rest_since) if local < cfg.rest_speed else None
-            reason = self._decided(row, reference_energy, rest_since, lo, hi)
+            reason = self._decided(row, reference_energy, rest_since, lo, hi, deadline)
             if reason is not None:
                 break
             if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
@@ -271,9 +271,10 @@ class Throw:
         return energy.spring + energy.gravity + self.sim.model.gravity / s.inv_mass[row] * s.x[row, 2]
 
     def _decided(self, row: int, reference_energy: float, rest_since: float | None,
-                 lo: np.ndarray, hi: np.ndarray) -> str | None:
+                 lo: np.ndarray, hi: np.ndarray, deadline: float) -> str | None:
         """The reason the throw's outcome is decided now, or None (``lo``, ``hi``: the region
-        from :meth:`_survey` with AWAKE_MARGIN)."""
+        from :meth:`_survey` with AWAKE_MARGIN). The energy bound counts, besides the energy
+        free now, all the wind could still feed the balls before ``deadline``."""
         sim = self.sim
         s, m = sim.state, sim.model
         p = s.x[row]
@@ -282,10 +283,9 @@ class Throw:
             return "flies_away"
         if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
             return "at_rest"
-        if m.ball_drag > 0.0 and np.any(m.wind != 0.0):
-            return None  # the wind can feed the ball energy: no energy bound
         energy = sim.energy()  # one evaluation per check: kinetic and potential together
         free = energy.kinetic + max(0.0, self._potential_without(row, energy) - reference_energy)
+        free += sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind) * max(0.0, deadline - s.time)
         reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
         if reach < sim.opening.lowest_z:
             return "cannot_reach_opening"
