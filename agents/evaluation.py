@@ -54,16 +54,18 @@ def evaluate(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, se
     """Run ``episodes`` episodes seeded ``seed, seed + 1, ...`` and count captured throws;
     with a ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also be a
     function of the env that returns the policy (for one that reads the env, such as
-    :class:`~agents.oracle.InformedOracle`)."""
+    :class:`~agents.oracle.InformedOracle`). The policy is given its recurrent ``state`` back
+    and ``episode_start`` (as SB3's ``evaluate_policy`` does), so policies with memory work too."""
     env = NetCatchEnv(**env_kwargs)
     if isinstance(policy, type) or not hasattr(policy, "predict"):
         policy = policy(env)
     captured = throws = 0
     for episode in tqdm(range(episodes), desc=progress, unit="episode", disable=progress is None, leave=False):
         obs, _ = env.reset(seed=seed + episode)
-        done = False
+        done, state, start = False, None, True
         while not done:
-            action, _ = policy.predict(obs, deterministic=True)
+            action, state = policy.predict(obs, state=state, episode_start=np.array([start]), deterministic=True)
+            start = False
             obs, _, terminated, truncated, info = env.step(action)
             captured += int(info["captured"])
             throws += 1

@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
+
+import numpy as np
 
 from agents.evaluation import Policy
 from agents.oracle import BallisticOracle
@@ -10,6 +13,7 @@ from agents.random_agent import RandomAgent
 
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.zip"  # trained on NetCatchWindy-v0
+PRETRAINED_WINDY_STACKED = Path(__file__).resolve().parent / "pretrained" / "ppo_windy_stack5.zip"  # the same, 5 frames
 
 
 SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG")
@@ -29,3 +33,23 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO")
     import stable_baselines3
 
     return getattr(stable_baselines3, algorithm.upper()).load(str(name), device="cpu")
+
+
+class FrameStackPolicy:
+    """A model trained on Stable-Baselines3's ``VecFrameStack(n_stack)`` observations, acting in
+    one unstacked env: it keeps the episode's last ``n_stack`` observations, newest last and
+    zeros before the first, as ``VecFrameStack`` does, and starts afresh at ``episode_start``."""
+
+    def __init__(self, model: Any, n_stack: int) -> None:
+        self.model, self.n_stack = model, n_stack
+        self._stack: np.ndarray | None = None
+
+    def predict(self, observation: np.ndarray, state: Any = None, episode_start: Any = None,
+                deterministic: bool = True) -> tuple[np.ndarray, Any]:
+        """The model's action for the stack that ends with ``observation`` (one env)."""
+        obs = np.asarray(observation, dtype=np.float32).ravel()
+        if self._stack is None or (episode_start is not None and bool(np.any(episode_start))):
+            self._stack = np.zeros(self.n_stack * obs.size, dtype=np.float32)
+        self._stack = np.concatenate([self._stack[obs.size:], obs])
+        action, _ = self.model.predict(self._stack, deterministic=deterministic)
+        return action, state

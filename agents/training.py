@@ -8,16 +8,18 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
 from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.env_util import make_vec_env
-from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv
+from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv, VecFrameStack
 
 from agents.evaluation import evaluate
 from agents.hyperparams import ENV_KWARGS, POLICY, PPO_PARAMS  # from agents/hyperparams/ppo.yml
+from agents.policies import FrameStackPolicy
 from netgym.envs import NetCatchEnv
 
 EVAL_SEED = 20_000   # evaluation episodes during training use seeds 20000, 20001, ... (not the final test's)
@@ -28,12 +30,20 @@ def env_kwargs(env_id: str) -> dict:
     return {**gym.spec(env_id).kwargs, **ENV_KWARGS}
 
 
-def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0") -> VecEnv:
+def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0", frame_stack: int = 1) -> VecEnv:
     """The vectorised training environment: ``make_vec_env`` with ``SubprocVecEnv`` (one
-    process per environment)."""
+    process per environment), observations stacked over the last ``frame_stack`` steps
+    (``VecFrameStack``) when it is above 1."""
     NetCatchEnv()  # compile the kernels once before the workers start
-    return make_vec_env(f"netgym:{env_id}", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
-                        env_kwargs=dict(ENV_KWARGS))
+    env = make_vec_env(f"netgym:{env_id}", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
+                       env_kwargs=dict(ENV_KWARGS))
+    return VecFrameStack(env, frame_stack) if frame_stack > 1 else env
+
+
+def acting_policy(model: PPO, frame_stack: int = 1) -> Any:
+    """``model`` as a policy for one unstacked env (wrapped in :class:`FrameStackPolicy` when it
+    was trained on stacked observations)."""
+    return FrameStackPolicy(model, frame_stack) if frame_stack > 1 else model
 
 
 Point = tuple[int, float, float]
@@ -47,9 +57,10 @@ class CaptureCurve(BaseCallback):
     is spent."""
 
     def __init__(self, eval_every: int, episodes: int, budget_s: float, best_path: Path, seed: int = EVAL_SEED,
-                 env_id: str = "NetCatch-v0") -> None:
+                 env_id: str = "NetCatch-v0", frame_stack: int = 1) -> None:
         super().__init__()
         self.eval_every, self.episodes, self.budget_s, self.env_id = eval_every, episodes, budget_s, env_id
+        self.frame_stack = frame_stack
         self.best_path, self.seed = best_path, seed
         self.points: list[Point] = []
         self._best = -1.0
@@ -59,7 +70,8 @@ class CaptureCurve(BaseCallback):
 
     def _evaluate(self) -> None:
         self._spent += time.perf_counter() - self._resumed
-        rate = evaluate(self.model, self.episodes, seed=self.seed, **env_kwargs(self.env_id)).rate  # captures
+        rate = evaluate(acting_policy(self.model, self.frame_stack), self.episodes, seed=self.seed,
+                        **env_kwargs(self.env_id)).rate  # captures
         self.points.append((self.num_timesteps, rate, self._spent))
         self.logger.record("eval/capture_rate", rate)
         if rate > self._best:
@@ -124,14 +136,16 @@ def _spread(curves: list[list[Point]]) -> tuple[np.ndarray, np.ndarray, np.ndarr
 
 def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: int = 8,
           eval_every: int = 4096, eval_episodes: int = 40, seed: int = 0,
-          progress_bar: bool = True, env_id: str = "NetCatch-v0") -> tuple[PPO, list[Point]]:
+          progress_bar: bool = True, env_id: str = "NetCatch-v0", frame_stack: int = 1) -> tuple[PPO, list[Point]]:
     """Train PPO within a wall-clock budget; saves ``model.zip`` and ``best_model.zip`` in
     ``out`` and logs to TensorBoard under ``out/tb``. Returns the model and its capture curve
     (from step 0 to the end; see :class:`CaptureCurve`). ``progress_bar``: SB3's, with ETA;
-    ``env_id``: the registered NetCatch id to train on."""
+    ``env_id``: the registered NetCatch id to train on; ``frame_stack``: observations stacked
+    over that many steps (act with :func:`acting_policy`)."""
     out.mkdir(parents=True, exist_ok=True)
-    env = make_training_env(n_envs, seed, env_id)
-    curve = CaptureCurve(eval_every, eval_episodes, 60.0 * minutes, out / "best_model", env_id=env_id)
+    env = make_training_env(n_envs, seed, env_id, frame_stack)
+    curve = CaptureCurve(eval_every, eval_episodes, 60.0 * minutes, out / "best_model", env_id=env_id,
+                         frame_stack=frame_stack)
     model = PPO(POLICY, env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
     model.learn(timesteps, callback=curve, progress_bar=progress_bar)
     model.save(out / "model")

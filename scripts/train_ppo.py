@@ -16,6 +16,7 @@ Usage::
 
     python scripts/train_ppo.py --minutes 20 --out runs/ppo                 # full run
     python scripts/train_ppo.py --minutes 6 --seeds 0 1 2 --out runs/seeds  # several seeds, one after another
+    python scripts/train_ppo.py --env NetCatchWindy-v0 --frame-stack 5 --out runs/windy_stack5  # memory of the episode
     python scripts/train_ppo.py --quick --out /tmp/ppo                      # seconds, for CI
 """
 
@@ -28,7 +29,7 @@ from pathlib import Path
 from agents.evaluation import evaluate
 from agents.policies import load_policy
 from agents.oracle import BallisticOracle
-from agents.training import env_kwargs, plot_curves, train
+from agents.training import acting_policy, env_kwargs, plot_curves, train
 
 
 def main() -> None:
@@ -42,6 +43,8 @@ def main() -> None:
     parser.add_argument("--eval-episodes", type=int, default=40)
     parser.add_argument("--seeds", type=int, nargs="+", default=[0], help="one run per seed, one after another")
     parser.add_argument("--env", default="NetCatch-v0", help="the registered NetCatch id to train on")
+    parser.add_argument("--frame-stack", type=int, default=1,
+                        help="stack each observation with the previous ones of the episode (SB3's VecFrameStack)")
     parser.add_argument("--quick", action="store_true", help="tiny budget for smoke tests")
     args = parser.parse_args()
     if args.quick:
@@ -51,7 +54,7 @@ def main() -> None:
         out = args.out if len(args.seeds) == 1 else args.out / f"seed_{seed}"
         print(f"seed {seed}: training for up to {args.minutes:g} min or {args.timesteps} steps ...")
         model, points = train(out, args.minutes, args.timesteps, args.n_envs, args.eval_every, args.eval_episodes,
-                              seed, progress_bar=True, env_id=args.env)
+                              seed, progress_bar=True, env_id=args.env, frame_stack=args.frame_stack)
         curves.append(points)
         models.append(model)
         print(f"seed {seed}: trained {model.num_timesteps} steps in {points[-1][2] / 60:.1f} min of training; "
@@ -66,7 +69,8 @@ def main() -> None:
         writer.writerows((seed, *p) for seed, points in zip(args.seeds, curves) for p in points)
     plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png", f"PPO on {args.env}")
     for seed, model in zip(args.seeds, models):
-        print(f"seed {seed}: capture rate over {episodes} test episodes: PPO {evaluate(model, episodes, seed=10_000, **kwargs)}")
+        print(f"seed {seed}: capture rate over {episodes} test episodes: PPO "
+              f"{evaluate(acting_policy(model, args.frame_stack), episodes, seed=10_000, **kwargs)}")
     print(f"oracle {oracle}; random {random}; wrote {args.out / 'learning_curve.png'}")
 
 

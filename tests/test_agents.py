@@ -114,3 +114,39 @@ def test_policy_kwargs_are_parsed_not_evaluated(text: str) -> None:
         parse_policy_kwargs(text)
     assert parse_policy_kwargs("dict(net_arch=[64, 64], log_std_init=-0.5)") == {"net_arch": [64, 64],
                                                                                   "log_std_init": -0.5}
+
+
+def test_frame_stack_policy_sees_what_vec_frame_stack_gives_the_model() -> None:
+    """Acting in one plain env, FrameStackPolicy hands the model exactly the stacked
+    observations SB3's VecFrameStack gave it in training, across an episode boundary."""
+    import numpy as np
+    from stable_baselines3.common.vec_env import DummyVecEnv, VecFrameStack
+
+    from agents.policies import FrameStackPolicy
+    from netgym.envs import NetCatchEnv
+
+    class Recorder:
+        def __init__(self) -> None:
+            self.seen: list[np.ndarray] = []
+
+        def predict(self, observation, deterministic=True):
+            self.seen.append(np.array(observation))
+            return np.zeros(3, dtype=np.float32), None
+
+    venv = VecFrameStack(DummyVecEnv([lambda: NetCatchEnv(balls_per_episode=2, feedback=True)]), 3)
+    venv.seed(5)
+    stacked = venv.reset()[0]
+    env = NetCatchEnv(balls_per_episode=2, feedback=True)
+    obs, _ = env.reset(seed=5)
+    recorder = Recorder()
+    policy, start, rng = FrameStackPolicy(recorder, 3), True, np.random.default_rng(0)
+    for _ in range(4):  # two episodes
+        action, _ = policy.predict(obs, episode_start=np.array([start]))
+        assert np.array_equal(recorder.seen[-1], stacked)
+        action = rng.uniform(-1, 1, 3).astype(np.float32)
+        obs, _, done, _, _ = env.step(action)
+        stacked = venv.step(action[None])[0][0]
+        start = done
+        if done:
+            obs, _ = env.reset()
+    assert np.count_nonzero(recorder.seen[2][:-obs.size]) == 0  # a new episode's stack starts from zeros
