@@ -116,8 +116,9 @@ class SimulationConfig:
 
     ``max_ball_travel`` is the largest distance, as a fraction of the ball radius, that a ball
     may move relative to the net in one substep; longer steps are split (no tunnelling).
-    ``rest_speed`` (m/s) is what counts as at rest: for a ball whose outcome waits on it (with
-    what is near it, for 0.1 s), and for the net and balls settling between two throws.
+    ``rest_speed`` (m/s): a ball whose outcome waits on it is at rest when it and what is near
+    it stay slower than this for 0.1 s. ``settle_speed`` (m/s): the pause between two throws
+    ends when no body has moved faster than this over 0.1 s (the scene is then stopped).
     """
 
     integrator: str = _choice(*INTEGRATORS)
@@ -129,6 +130,7 @@ class SimulationConfig:
     cg_max_iterations: int = _num(1, 10_000)
     divergence_speed: float = _num(1.0, 1e8, lo_open=True)
     rest_speed: float = _num(0.0, 1.0, lo_open=True)
+    settle_speed: float = _num(0.0, 1.0, lo_open=True)
 
 
 @dataclass(frozen=True)

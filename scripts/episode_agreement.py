@@ -1,5 +1,5 @@
 """Do the shortcuts change episodes? The outcomes of seeded 5-ball episodes in the default
-pipeline (IMEX Euler at 2 ms, the fast path, the pause relaxed to 1 cm/s) against a reference
+pipeline (IMEX Euler at 2 ms, the fast path, the pause relaxed to 10 cm/s) against a reference
 pipeline (0.5 ms, every throw simulated to its time limit, the pause relaxed to 1 mm/s), on
 the same throwers and actions: half noisy-oracle episodes, half random. Throws 2..N meet the
 net and the balls as each pipeline left them.
@@ -10,7 +10,7 @@ other settings can be compared against it cheaply with ``--candidate``.
 Usage::
 
     python scripts/episode_agreement.py                  # 250 episodes: 1000 throws at positions 2..5
-    python scripts/episode_agreement.py --candidate simulation.rest_speed=0.03
+    python scripts/episode_agreement.py --candidate simulation.settle_speed=0.03
     python scripts/episode_agreement.py --quick          # 2 3-ball episodes, nothing stored, for smoke tests
 """
 

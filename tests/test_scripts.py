@@ -87,10 +87,10 @@ def test_variants_table_quick_prints_every_agent() -> None:
 
 
 def test_episode_agreement_quick_compares_every_throw() -> None:
-    out = _run("scripts/episode_agreement.py", "--quick", "--candidate", "simulation.rest_speed=0.02")
+    out = _run("scripts/episode_agreement.py", "--quick", "--candidate", "simulation.settle_speed=0.02")
     rows = {tuple(cell.strip() for cell in line.split("|")[1:4]): line.split("|") for line in out.splitlines()
-            if line.startswith("| default") or line.startswith("| simulation.rest_speed=0.02")}
-    for pipeline in ("default", "simulation.rest_speed=0.02"):
+            if line.startswith("| default") or line.startswith("| simulation.settle_speed=0.02")}
+    for pipeline in ("default", "simulation.settle_speed=0.02"):
         assert int(rows[(pipeline, "1", "all")][4]) == 2       # one first throw in each of the 2 episodes
         assert int(rows[(pipeline, "2..N", "all")][4]) == 4    # throws 2 and 3 of both
         assert float(rows[(pipeline, "2..N", "all")][7]) > 0   # throws/s

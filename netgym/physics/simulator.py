@@ -32,9 +32,10 @@ from netgym.physics.stepping import new_counters
 from netgym.physics.throws import Throw, ThrowResult
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
-RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing faster than simulation.rest_speed
+RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing faster than simulation.settle_speed
 MAX_LAUNCH_SPEED = 100.0      # m/s
 SETTLE_TIME = 60.0            # s: the most simulated time the settling of a new net may take
+NEW_NET_SETTLE_SPEED = 0.01   # m/s: a new net settles (once per scene) until nothing moves faster (or settle_speed)
 
 
 @dataclass(frozen=True)
@@ -246,21 +247,22 @@ class Simulator:
 
         Dynamic relaxation with the scene's own integrator and ``dt`` (so the result is an
         equilibrium of exactly the dynamics that follow): all velocities are zeroed whenever the
-        kinetic energy has passed a peak, until no body moves more than ``simulation.rest_speed``
+        kinetic energy has passed a peak, until no body moves more than ``simulation.settle_speed``
         times RELAX_WINDOW over RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it does not settle within
         ``max_time`` simulated seconds.
         """
         self.run(self.relax_plan(max_time))
 
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
-                   frames: FrameClock | None = None) -> Plan:
+                   frames: FrameClock | None = None, settle_speed: float | None = None) -> Plan:
         """:meth:`relax` as a plan (see :meth:`run`); with ``frames``, its chunks end at the
-        clock's instants too."""
+        clock's instants too; ``settle_speed`` replaces the scene's ``simulation.settle_speed``."""
         integrator = self.integrator if integrator is None else integrator
         dt = self.dt if dt is None else dt
         steps = max(1, round(CHUNK_SECONDS / dt))
         previous = math.inf
-        rest_displacement = self.config.simulation.rest_speed * RELAX_WINDOW
+        speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
+        rest_displacement = speed * RELAX_WINDOW
         started = self.state.time
         window_start, window_time = self.state.x.copy(), self.state.time
         while self.state.time - started < max_time:
@@ -333,13 +335,15 @@ class Simulator:
         key = dataclasses.replace(self.config, air=AirConfig())
         if key not in _SETTLED:
             progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
+            speed = min(NEW_NET_SETTLE_SPEED, self.config.simulation.settle_speed)
             try:
-                self.run(self.relax_plan(SETTLE_TIME), progress)
+                self.run(self.relax_plan(SETTLE_TIME, settle_speed=speed), progress)
             except SimulationDivergedError:
                 # an unstable dt (allowed with check_stability=False) cannot hold the net still:
                 # start it from the equilibrium found with implicit Euler instead
                 self.state = State.at_rest(self.model)
-                self.run(self.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT), progress)
+                self.run(self.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT,
+                                         settle_speed=speed), progress)
             finally:
                 progress.close()
             _SETTLED[key] = self.state.x.copy()
