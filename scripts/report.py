@@ -10,7 +10,9 @@ Sections (each measured in this run, on one core unless stated):
    a stiff scene, beside the linear-stability estimate;
 4. throughput: substeps/s, ns per spring per substep, throws/s with and without the fast path,
    8 environments in a Gymnasium SyncVectorEnv and in SB3's SubprocVecEnv;
-5. peers: the same net in a NumPy vectorised implementation, same dt, same reference.
+5. peers: the same net in a NumPy vectorised implementation, same dt, same reference;
+6. ratios of the above; 7. whole episodes (step times, the pause booked);
+8. episode agreement: the default pipeline against the stored reference episodes.
 
 Usage::
 
@@ -34,7 +36,8 @@ def main() -> None:
     parser.add_argument("--throws", type=int, default=1000, help="throws for the outcome-accuracy section")
     parser.add_argument("--docs", type=Path, default=Path("docs"))
     args = parser.parse_args()
-    report = measure(args.quick, 12 if args.quick else args.throws)
+    report = measure(args.quick, 12 if args.quick else args.throws,
+                     args.docs / "figures" / "episode_reference.json")
     text = to_markdown(report)
     if args.quick:
         print(text)
