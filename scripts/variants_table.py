@@ -3,9 +3,10 @@ intervals, as a markdown table (docs/AGENTS.md).
 
 Agents: the ballistic oracle (knows the drag of the air, not the wind), the informed oracle
 (also told each episode's wind: the ceiling), the adaptive oracle (corrects its aim from the
-feedback of its own throws), the constant middle action, random actions, and PPO trained on
-the windy variant (``python scripts/train_ppo.py --env NetCatchWindy-v0 --minutes 20``). Episodes are seeded 10000, 10001, ...; each
-agent meets the same ones. Two processes share the agents.
+feedback of its own throws), the constant middle action, random actions, PPO trained on the
+windy variant (``python scripts/train_ppo.py --env NetCatchWindy-v0 --minutes 20``) and PPO
+trained on the episode's last five observations stacked (``--frame-stack 5``). Episodes are
+seeded 10000, 10001, ...; each agent meets the same ones. Two processes share the agents.
 
 Usage::
 
@@ -25,7 +26,7 @@ import numpy as np
 import netgym  # noqa: F401  (registers the variants)
 from agents.evaluation import evaluate
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
-from agents.policies import PRETRAINED_WINDY, load_policy
+from agents.policies import PRETRAINED_WINDY, PRETRAINED_WINDY_STACKED, FrameStackPolicy, load_policy
 from agents.random_agent import RandomAgent
 
 AGENTS = {
@@ -35,6 +36,8 @@ AGENTS = {
     "constant action (10 m/s, 50 degrees, straight)": lambda env: ConstantAction(),
     "random": lambda env: RandomAgent(0),
     "PPO, MLP with the feedback (agents/pretrained/ppo_windy.zip)": lambda env: load_policy(PRETRAINED_WINDY),
+    "PPO, MLP on the last 5 observations (agents/pretrained/ppo_windy_stack5.zip)":
+        lambda env: FrameStackPolicy(load_policy(PRETRAINED_WINDY_STACKED), 5),
 }
 VARIANTS = {"NetCatchWindy-v0": list(AGENTS),  # the windy PPO model was trained on NetCatchWindy-v0
             "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"],

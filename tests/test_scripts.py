@@ -73,17 +73,18 @@ def test_train_rllib_quick_runs_one_iteration(tmp_path) -> None:
 def test_report_quick_covers_every_section() -> None:
     out = _run("scripts/report.py", "--quick")
     for heading in ("## 1. Work-precision", "## 2. Outcome accuracy", "## 3. Stability limits",
-                    "## 4. Throughput", "## 5. Peers"):
+                    "## 4. Throughput", "## 5. Peers", "## 7. Episodes", "## 8. Do the shortcuts change episodes?"):
         assert heading in out
     for integrator in INTEGRATORS:
         assert f"| {integrator} |" in out
     assert "NumPy vectorised" in out
+    assert "| default | 2..N | all | 4 |" in out  # two 3-ball episodes against a fresh reference
 
 
 def test_variants_table_quick_prints_every_agent() -> None:
     out = _run("scripts/variants_table.py", "--quick", "--workers", "1")
     rows = [line for line in out.splitlines() if line.startswith("| NetCatch")]
-    assert len(rows) == 10 and all("% (" in row for row in rows)
+    assert len(rows) == 11 and all("% (" in row for row in rows)
 
 
 def test_episode_agreement_quick_compares_every_throw() -> None:

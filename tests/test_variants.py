@@ -145,3 +145,18 @@ def test_shipped_windy_model_loads_and_reads_the_windy_observation() -> None:
     assert model.observation_space == env.observation_space
     action, _ = model.predict(obs, deterministic=True)
     assert env.action_space.contains(action)
+
+
+def test_shipped_frame_stacked_windy_model_acts_on_the_windy_observations() -> None:
+    pytest.importorskip("stable_baselines3")
+    from agents.policies import PRETRAINED_WINDY_STACKED, FrameStackPolicy, load_policy
+
+    model = load_policy(PRETRAINED_WINDY_STACKED)
+    env = gym.make("NetCatchWindy-v0")
+    obs, _ = env.reset(seed=0)
+    assert model.observation_space.shape == (5 * obs.size,)
+    policy = FrameStackPolicy(model, 5)
+    for start in (True, False):
+        action, _ = policy.predict(obs, episode_start=np.array([start]))
+        assert env.action_space.contains(action)
+        obs, *_ = env.step(action)
