@@ -39,7 +39,7 @@ class Report:
 
 
 def _agreement(quick: bool, reference: Path | None) -> str:
-    """Section 8: the default pipeline and the pause of old (``settle_speed`` 0.01 m/s) against
+    """Section 8: the default pipeline and the earlier pause (``settle_speed`` 0.01 m/s) against
     the stored reference episodes (against two fresh 3-ball ones when ``quick`` or none is stored)."""
     if quick or reference is None or not reference.is_file():
         scene, ref = "basket", episode_agreement.reference("basket", 2, 3, workers=1)
@@ -221,7 +221,7 @@ AGREEMENT_TEXT = (
     "1 mm/s. Throws 2..N meet the net and the balls as each pipeline left them, so they test the pause and the "
     "fast path together. `python scripts/episode_agreement.py` (the reference is stored in "
     "`docs/figures/episode_reference.json`; `--candidate FIELD=VALUE` compares other settings against it). The "
-    "second pipeline is the pause of old, ten times stricter.")
+    "second pipeline ends the pause at 0.01 m/s, as before `simulation.settle_speed` existed.")
 STATIC_PAUSE_TEXT = (
     "- Tried, not adopted: the pause as a static equilibrium solve (branch `experiment/static-pause`): minimise "
     "spring + gravity energy with penalty contacts by damped Newton (Levenberg-Marquardt, the springs' Hessian "
