@@ -146,3 +146,23 @@ def test_long_settling_shows_progress_and_short_work_stays_quiet() -> None:
     assert quiet.getvalue() == ""
     text = loud.getvalue()
     assert "settling: " in text and "of at most 60 s simulated" in text and text.endswith("\n")
+
+
+def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> None:
+    """The pause between throws stops when no body moved faster than simulation.settle_speed
+    over its last 0.1 s, and a looser settle speed stops it sooner."""
+    from netgym.physics.simulator import RELAX_WINDOW
+
+    substeps = {}
+    for speed in (0.1, 0.01):
+        sim = Simulator("basket", {"simulation.settle_speed": speed})
+        sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, the net still moving
+        assert sim.awake
+        seen: list[tuple[float, np.ndarray]] = []
+        pause = sim.run(sim.pause_plan(), lambda s: seen.append((s.state.time, s.state.x.copy())))
+        end_time, end = seen[-1]
+        window_start = next(x for t, x in seen if abs(t - (end_time - RELAX_WINDOW)) < 1e-9)
+        assert np.abs(end - window_start).max() < speed * RELAX_WINDOW
+        assert not sim.awake and not sim.state.v.any()
+        substeps[speed] = pause["settle_substeps"]
+    assert 0 < substeps[0.1] < substeps[0.01]
