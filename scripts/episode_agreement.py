@@ -20,7 +20,7 @@ import argparse
 import json
 from pathlib import Path
 
-from netgym.bench.episode_agreement import TABLE_HEADER, agreement_rows, load, reference, run_pipeline, save
+from netgym.bench.episode_agreement import agreement_table, load, reference, save
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -58,17 +58,8 @@ def main() -> None:
         scene = args.scene
         reference_episodes = reference(scene, args.episodes, args.balls, workers=args.workers)
         save(reference_episodes, args.reference, scene)
-    balls = len(reference_episodes[0].captured)
-    rows = list(TABLE_HEADER)
-    for label in ["default", *args.candidate]:
-        overrides = {} if label == "default" else _overrides(label)
-        candidate = run_pipeline(scene, balls, reference_episodes, True, overrides, args.workers)
-        rows += agreement_rows(label, candidate, reference_episodes)
-    print("\n".join(rows))
-    throws = sum(len(e.captured) for e in reference_episodes)
-    seconds = sum(e.seconds for e in reference_episodes)
-    print(f"\nReference: {len(reference_episodes)} {scene} episodes of {balls} throws, "
-          f"{throws / seconds:.2f} throws/s.")
+    candidates = [("default", {}), *((label, _overrides(label)) for label in args.candidate)]
+    print(agreement_table(scene, reference_episodes, candidates, args.workers))
 
 
 if __name__ == "__main__":

@@ -67,7 +67,8 @@ def main() -> None:
         writer = csv.writer(f)
         writer.writerow(["seed", "env_steps", "capture_rate", "wall_seconds"])
         writer.writerows((seed, *p) for seed, points in zip(args.seeds, curves) for p in points)
-    plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png", f"PPO on {args.env}" + (f", the last {args.frame_stack} observations stacked" if args.frame_stack > 1 else ""))
+    stacked = f", the last {args.frame_stack} observations stacked" if args.frame_stack > 1 else ""
+    plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png", f"PPO on {args.env}{stacked}")
     for seed, model in zip(args.seeds, models):
         print(f"seed {seed}: capture rate over {episodes} test episodes: PPO "
               f"{evaluate(acting_policy(model, args.frame_stack), episodes, seed=10_000, **kwargs)}")

@@ -137,3 +137,18 @@ def agreement_rows(label: str, candidate: list[Episode], reference_episodes: lis
 
 TABLE_HEADER = ["| pipeline | throws | policy | compared | agree (95% CI) | caught (pipeline / reference) | throws/s |",
                 "|---|---|---|---:|---|---|---:|"]
+
+
+def agreement_table(scene: str, reference_episodes: list[Episode], candidates: list[tuple[str, Mapping[str, Any]]],
+                    workers: int = 2) -> str:
+    """The markdown table of every ``(label, overrides)`` fast pipeline replaying the reference
+    episodes, and a line on the reference itself."""
+    balls = len(reference_episodes[0].captured)
+    rows = list(TABLE_HEADER)
+    for label, overrides in candidates:
+        candidate = run_pipeline(scene, balls, reference_episodes, True, overrides, workers)
+        rows += agreement_rows(label, candidate, reference_episodes)
+    throws = sum(len(e.captured) for e in reference_episodes)
+    seconds = sum(e.seconds for e in reference_episodes)
+    return "\n".join(rows) + (f"\n\nReference: {len(reference_episodes)} {scene} episodes of {balls} throws, "
+                              f"{throws / seconds:.2f} throws/s.")

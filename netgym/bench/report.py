@@ -45,12 +45,8 @@ def _agreement(quick: bool, reference: Path | None) -> str:
         scene, ref = "basket", episode_agreement.reference("basket", 2, 3, workers=1)
     else:
         scene, ref = episode_agreement.load(reference)
-    balls, rows = len(ref[0].captured), list(episode_agreement.TABLE_HEADER)
-    for label, overrides in (("default", {}), ("simulation.settle_speed=0.01", {"simulation.settle_speed": 0.01})):
-        rows += episode_agreement.agreement_rows(
-            label, episode_agreement.run_pipeline(scene, balls, ref, True, overrides, workers=1), ref)
-    rate = sum(len(e.captured) for e in ref) / sum(e.seconds for e in ref)
-    return "\n".join(rows) + f"\n\nReference pipeline: {len(ref)} episodes of {balls} throws, {rate:.2f} throws/s."
+    return episode_agreement.agreement_table(
+        scene, ref, [("default", {}), ("simulation.settle_speed=0.01", {"simulation.settle_speed": 0.01})], workers=1)
 
 
 def measure(quick: bool, count: int, reference: Path | None = None) -> Report:

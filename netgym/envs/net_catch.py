@@ -99,7 +99,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     ``sparse`` (default): +1 for a captured ball, 0 otherwise. ``shaped``: a miss also earns
     ``0.5 * exp(-d / 1 m)``, where ``d`` is the closest distance between the ball's free flight
-    (the launch parabola; through the air and wind when the scene has air) and the opening rectangle (bounded in [0, 0.5], so a capture is always better).
+    (the launch parabola; through the air and wind when the scene has air) and the opening
+    rectangle (bounded in [0, 0.5], so a capture is always better).
 
     ## Starting state
 
