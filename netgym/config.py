@@ -119,6 +119,9 @@ class SimulationConfig:
     ``rest_speed`` (m/s): a ball whose outcome waits on it is at rest when it and what is near
     it stay slower than this for 0.1 s. ``settle_speed`` (m/s): the pause between two throws
     ends when no body has moved faster than this over 0.1 s (the scene is then stopped).
+    The pause seeks an equilibrium, not a trajectory: it steps with ``settle_integrator`` at
+    ``settle_dt`` (s), or at 90% of that integrator's linear stability limit on the net if
+    that is smaller, and falls back to ``integrator`` at ``dt`` should it diverge.
     """
 
     integrator: str = _choice(*INTEGRATORS)
@@ -131,6 +134,8 @@ class SimulationConfig:
     divergence_speed: float = _num(1.0, 1e8, lo_open=True)
     rest_speed: float = _num(0.0, 1.0, lo_open=True)
     settle_speed: float = _num(0.0, 1.0, lo_open=True)
+    settle_integrator: str = _choice(*INTEGRATORS)
+    settle_dt: float = _num(0.0, 0.05, lo_open=True)
 
 
 @dataclass(frozen=True)

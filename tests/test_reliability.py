@@ -151,6 +151,7 @@ def test_long_settling_shows_progress_and_short_work_stays_quiet() -> None:
 def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> None:
     """The pause between throws stops when no body moved faster than simulation.settle_speed
     over its last 0.1 s, and a looser settle speed stops it sooner."""
+    from netgym.physics.frames import FrameClock
     from netgym.physics.simulator import RELAX_WINDOW
 
     substeps = {}
@@ -158,11 +159,45 @@ def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> Non
         sim = Simulator("basket", {"simulation.settle_speed": speed})
         sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, the net still moving
         assert sim.awake
-        seen: list[tuple[float, np.ndarray]] = []
-        pause = sim.run(sim.pause_plan(), lambda s: seen.append((s.state.time, s.state.x.copy())))
-        end_time, end = seen[-1]
-        window_start = next(x for t, x in seen if abs(t - (end_time - RELAX_WINDOW)) < 1e-9)
-        assert np.abs(end - window_start).max() < speed * RELAX_WINDOW
+        seen: list[np.ndarray] = []
+        every_step = FrameClock(sim.settle_dt, sim.state.time)  # one request per pause step, observed
+        pause = sim.run(sim.pause_plan(every_step, film=True), lambda s: seen.append(s.state.x.copy()))
+        window = round(RELAX_WINDOW / sim.settle_dt)
+        assert len(seen) > window
+        assert np.abs(seen[-1] - seen[-1 - window]).max() < speed * RELAX_WINDOW
+        assert np.abs(seen[-2] - seen[-2 - window]).max() >= speed * RELAX_WINDOW  # not one step sooner
         assert not sim.awake and not sim.state.v.any()
         substeps[speed] = pause["settle_substeps"]
     assert 0 < substeps[0.1] < substeps[0.01]
+
+
+def test_the_pause_steps_at_settle_dt_within_the_stability_limit_of_its_integrator() -> None:
+    """simulation.settle_dt is taken as given where settle_integrator is stable at it, else cut
+    to 90% of that integrator's linear stability limit on the net."""
+    from netgym.physics.stability import stable_dt
+
+    assert Simulator("basket").settle_dt == 0.006
+    sim = Simulator("basket", {"simulation.settle_integrator": "explicit_euler"})
+    limit = stable_dt(sim.settle_integrator, sim.modes)
+    assert limit < 0.006 and sim.settle_dt == pytest.approx(0.9 * limit, rel=1e-12)
+
+
+def test_a_diverging_pause_starts_again_with_the_scene_integrator(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Should the pause diverge at its large step, it is done again from where it began with the
+    scene's own integrator and dt: the same state as that relaxation alone gives, bitwise."""
+    import netgym.physics.simulator as simulator
+
+    monkeypatch.setattr(simulator, "SETTLE_STABILITY_SHARE", 10.0)  # explicit Euler at 10x its limit
+    sim = Simulator("basket", {"simulation.settle_integrator": "explicit_euler", "simulation.settle_dt": 0.05})
+    assert sim.settle_dt > 9.0 * simulator.stable_dt(sim.settle_integrator, sim.modes)
+    sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])
+    start = sim.checkpoint()
+    with pytest.raises(SimulationDivergedError):
+        sim.run(sim.relax_plan(integrator=sim.settle_integrator))
+    sim.restore(start)
+    sim.run(sim.relax_plan(integrator=sim.integrator, dt=sim.dt))
+    alone = sim.state.copy()
+    sim.restore(start)
+    pause = sim.run(sim.pause_plan())
+    assert np.array_equal(sim.state.x, alone.x) and sim.state.time == alone.time
+    assert not sim.awake and pause["settle_substeps"] > 0

@@ -1,12 +1,14 @@
 """Integration of one state of a scene: the one Python entry to the stepping kernels.
 
-:func:`integrate` owns the bookkeeping around :func:`~netgym.physics.stepping.advance`: a copy
-of the state before, the simulated time after, and on divergence the restored state and a
+:func:`integrate` and :func:`relax` own the bookkeeping around
+:func:`~netgym.physics.stepping.advance` and :func:`~netgym.physics.stepping.relax`: a copy of
+the state before, the simulated time after, and on divergence the restored state and a
 :class:`~netgym.errors.SimulationDivergedError`. The state is integrated in place.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
@@ -47,17 +49,58 @@ class Workspace:
         return Scratch(self.array("work", work), self.array("coef", coef))
 
 
+class RestTest:
+    """What a relaxation remembers between kernel calls: the positions of its last ``window``
+    steps, its last kinetic energy, and whether no coordinate moved more than ``displacement``
+    (m) over the window: see :func:`~netgym.physics.stepping.relax`."""
+
+    def __init__(self, shape: tuple[int, int], window: int, displacement: float) -> None:
+        self.history = np.zeros((max(1, window), *shape))
+        self.memory = np.array([0.0, np.inf, 0.0, 0.0])
+        self.displacement = displacement
+
+    @property
+    def steps(self) -> int:
+        """Steps taken by the last kernel call."""
+        return int(self.memory[2])
+
+    @property
+    def at_rest(self) -> bool:
+        """True once the rest test has passed."""
+        return bool(self.memory[3])
+
+
 def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps: int,
               workspace: Workspace) -> SimulationDivergedError | None:
     """Advance ``target.state`` by ``n_steps`` steps (none when 0), in place, and add the work
     to its counters. Returns None, or the error when the integration diverged (the state is
     then restored as it was before the call)."""
     s = target.state
+    return _guarded(target, settings, n_steps, lambda: (stepping.advance(
+        s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
+        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters), n_steps))
+
+
+def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: int, workspace: Workspace,
+          rest: RestTest) -> SimulationDivergedError | None:
+    """Relax ``target.state`` for at most ``n_steps`` steps, until ``rest`` passes (see
+    :func:`~netgym.physics.stepping.relax`); returns as :func:`integrate` does."""
+    s = target.state
+    return _guarded(target, settings, n_steps, lambda: (stepping.relax(
+        s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
+        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.history, rest.memory,
+        rest.displacement), rest.steps))
+
+
+def _guarded(target: Integrand, settings: Settings, n_steps: int,
+             kernel: Callable[[], tuple[int, int]]) -> SimulationDivergedError | None:
+    """Run ``kernel()`` (returning its status and the steps it took) on a copy-guarded state:
+    the time moves on by the steps taken, or the state is restored and the error returned."""
+    s = target.state
     before = s.copy()
-    status = stepping.advance(s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-                              workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters)
+    status, steps = kernel()
     if status == stepping.OK:
-        s.time += n_steps * settings.dt
+        s.time += steps * settings.dt
         return None
     s.restore(before)
     return SimulationDivergedError(

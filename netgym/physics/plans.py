@@ -2,7 +2,8 @@
 
 A plan is a generator that holds all the decisions of a piece of simulation (a throw, the
 relaxation of the net) and yields typed requests: :class:`Integrate` (integrate this many
-steps) or :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
+steps), :class:`Relax` (relax for at most this many steps, until a rest test passes) or
+:class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
 requests of a simulator's plan, one integration call per :class:`Integrate`, and throws a
 divergence back into the plan.
@@ -14,7 +15,7 @@ from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any, Protocol, Union
 
-from netgym.physics.integration import Integrand, Workspace, integrate
+from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, relax
 from netgym.physics.model import KernelModel, Settings, State
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
@@ -30,11 +31,22 @@ class Integrate:
 
 
 @dataclass(frozen=True)
+class Relax:
+    """Request: at most ``n_steps`` steps of dynamic relaxation, until ``rest`` passes (it
+    then says so, and how many steps were taken)."""
+
+    n_steps: int
+    integrator: int
+    dt: float
+    rest: RestTest
+
+
+@dataclass(frozen=True)
 class Tick:
     """Request: nothing to integrate; the plan moved time itself (a moment to observe)."""
 
 
-Request = Union[Integrate, Tick]
+Request = Union[Integrate, Relax, Tick]
 Plan = Generator[Request, None, Any]
 """A simulation plan: yields :data:`Request` objects, returns its result."""
 
@@ -75,7 +87,8 @@ class Drivable(Integrand, Protocol):
 def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[Any], None] | None = None) -> Any:
     """Carry out ``plan`` on ``sim`` until it returns; returns its result.
 
-    Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call;
+    Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call,
+    each :class:`Relax` one :func:`~netgym.physics.integration.relax` call;
     the plan is then resumed, with the divergence error of that integration thrown into it if
     there was one. ``observer(sim)`` is called after every request carried out without error,
     for example to record frames.
@@ -90,5 +103,8 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
         if isinstance(request, Integrate):
             error = integrate(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                               workspace)
+        elif isinstance(request, Relax):
+            error = relax(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
+                          workspace, request.rest)
         if error is None and observer is not None:
             observer(sim)

@@ -20,18 +20,20 @@ from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import AirConfig, SceneConfig, load_scene
 from netgym.errors import SimulationDivergedError, UnstableTimeStepError
 from netgym.physics.forces import energies
-from netgym.physics.integration import Workspace
+from netgym.physics.integration import RestTest, Workspace
 from netgym.physics.kinds import Integrator
 from netgym.physics.model import KernelModel, Model, Settings, State
 from netgym.physics.opening import Opening
 from netgym.physics.frames import FrameClock
-from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, drive, integrate_until_stops
+from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
 from netgym.physics.stability import NetModes, net_modes, stable_dt
 from netgym.physics.stepping import new_counters
 from netgym.physics.throws import Throw, ThrowResult
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
+SETTLE_STABILITY_SHARE = 0.9  # the pause steps at most this share of its integrator's linear stability limit
+RELAX_REQUEST = 0.25          # s, the most simulated time one relaxation request covers (a moment to observe)
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing faster than simulation.settle_speed
 MAX_LAUNCH_SPEED = 100.0      # m/s
 SETTLE_TIME = 60.0            # s: the most simulated time the settling of a new net may take
@@ -117,6 +119,9 @@ class Simulator:
                 f"{self.stable_dt:.3g} s of {self.integrator.label} on this net (highest frequency "
                 f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
                 f"dt <= {self.stable_dt:.3g} s, or integrator = {_stabler_than(self.integrator)}")
+        self.settle_integrator = Integrator.parse(config.simulation.settle_integrator)
+        self.settle_dt = min(config.simulation.settle_dt,
+                             SETTLE_STABILITY_SHARE * stable_dt(self.settle_integrator, self.modes))
         self.state = State.at_rest(self.model, self._settled_positions())
         self._rest_state = self.state.copy()
 
@@ -245,44 +250,50 @@ class Simulator:
     def relax(self, max_time: float = 60.0) -> None:
         """Bring the net and the balls in it to their equilibrium: the pause between two throws.
 
-        Dynamic relaxation with the scene's own integrator and ``dt`` (so the result is an
-        equilibrium of exactly the dynamics that follow): all velocities are zeroed whenever the
-        kinetic energy has passed a peak, until no body moves more than ``simulation.settle_speed``
-        times RELAX_WINDOW over RELAX_WINDOW. Raises :class:`SimulationDivergedError` if it does not settle within
-        ``max_time`` simulated seconds.
+        Dynamic relaxation with kinetic damping (every velocity is zeroed just past a peak of
+        the kinetic energy), with ``settle_integrator`` at :attr:`settle_dt`, until no body has
+        moved more than ``simulation.settle_speed`` times RELAX_WINDOW over RELAX_WINDOW; if that
+        diverges, again from where it started with the scene's integrator and ``dt``. Raises
+        :class:`SimulationDivergedError` if it does not settle within ``max_time`` simulated seconds.
         """
         self.run(self.relax_plan(max_time))
 
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
                    frames: FrameClock | None = None, settle_speed: float | None = None) -> Plan:
-        """:meth:`relax` as a plan (see :meth:`run`); with ``frames``, its chunks end at the
-        clock's instants too; ``settle_speed`` replaces the scene's ``simulation.settle_speed``."""
-        integrator = self.integrator if integrator is None else integrator
-        dt = self.dt if dt is None else dt
-        steps = max(1, round(CHUNK_SECONDS / dt))
-        previous = math.inf
+        """:meth:`relax` as a plan (see :meth:`run`); with ``frames``, its requests end at the
+        clock's instants too; ``integrator`` and ``dt`` replace the pause's own (then with no
+        fallback), ``settle_speed`` the scene's ``simulation.settle_speed``."""
+        if integrator is not None or dt is not None:
+            integrator = self.settle_integrator if integrator is None else integrator
+            yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt, frames,
+                                        settle_speed)
+            return
+        try:
+            yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, frames, settle_speed)
+        except SimulationDivergedError:
+            if (self.settle_integrator, self.settle_dt) == (self.integrator, self.dt):
+                raise
+            yield from self._relaxation(max_time, self.integrator, self.dt, frames, settle_speed)
+
+    def _relaxation(self, max_time: float, integrator: int, dt: float, frames: FrameClock | None,
+                    settle_speed: float | None) -> Plan:
+        """Dynamic relaxation with one integrator and dt (see :meth:`relax`)."""
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
-        rest_displacement = speed * RELAX_WINDOW
-        started = self.state.time
-        window_start, window_time = self.state.x.copy(), self.state.time
-        while self.state.time - started < max_time:
-            yield from integrate_until_stops(self.state, Integrate(steps, integrator, dt), frames)
-            kinetic = self.energy().kinetic
-            if kinetic < previous:
-                self.state.v[:] = 0.0
-                kinetic = 0.0
-            previous = kinetic
-            if self.state.time - window_time >= RELAX_WINDOW - 1e-12:
-                if float(np.abs(self.state.x - window_start).max(initial=0.0)) < rest_displacement:
-                    self.sleep()
-                    return
-                window_start, window_time = self.state.x.copy(), self.state.time
+        rest = RestTest(self.state.x.shape, round(RELAX_WINDOW / dt), speed * RELAX_WINDOW)
+        left, most = math.ceil(max_time / dt - 1e-9), max(1, round(RELAX_REQUEST / dt))
+        while left > 0:
+            n = min(left, most) if frames is None else min(left, most, frames.steps_to_next(self.state.time, dt))
+            yield Relax(n, integrator, dt, rest)
+            if rest.at_rest:
+                self.sleep()
+                return
+            left -= rest.steps
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
     def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
         """The pause between two throws, as a plan: :meth:`relax_plan` if the scene still moves,
         else nothing. Returns ``{"settle_substeps": ..., "settle_time": ...}``, the substeps and
-        simulated seconds it took. With ``frames`` and ``film`` its chunks end at the clock's
+        simulated seconds it took. With ``frames`` and ``film`` its requests end at the clock's
         instants; with ``frames`` alone the clock is paused over it (restart it at the launch)."""
         substeps, time = self.substeps, self.state.time
         if self.awake:

@@ -102,10 +102,52 @@ def update_entered(x, before, n_net, entered, opening):
 
 
 @njit(cache=True)
+def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box):
+    """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast; the
+    only kernel that unpacks a :class:`~netgym.physics.model.KernelModel` and its
+    :class:`~netgym.physics.model.Settings` for the passes of a step."""
+    n_net, radius, gravity, drag = model.n_net, model.ball_radius, model.gravity, model.drag
+    springs, params = model.springs, model.spring_params
+    integrator, dt = settings.integrator, settings.dt
+    work, coef = scratch.work, scratch.coef
+    start = work[START_SLOT]  # every body's position at the start of the substep
+    before = start[n_net:]
+    n_balls = x.shape[0] - n_net
+    substeps = 1
+    if n_balls > 0:
+        closing = _closing_speed(x, v, n_net, radius, dt)
+        substeps = max(1, int(math.ceil(closing * dt / (settings.max_travel * radius))))
+    h = dt / substeps
+    for _sub in range(substeps):
+        for k in range(x.shape[0]):
+            for c in range(3):
+                start[k, c] = x[k, c]
+        for b in range(n_balls):
+            for c in range(3):
+                before_v[b, c] = v[n_net + b, c]
+        if integrator == Integrator.EXPLICIT_EULER or integrator == Integrator.SYMPLECTIC_EULER:
+            step_euler(x, v, inv_mass, gravity, drag, springs, params, h, work,
+                       integrator == Integrator.SYMPLECTIC_EULER)
+        elif integrator == Integrator.RK4:
+            step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
+        elif integrator == Integrator.IMEX_EULER:
+            step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, h, work, coef)
+        else:
+            stats[0].cg_iterations += step_implicit_euler(
+                x, v, inv_mass, gravity, drag, springs, params, h, settings.cg_tolerance,
+                settings.cg_max_iterations, work, coef)
+        if n_balls > 0:
+            _free_ball_flight(x, v, before, before_v, n_net, gravity, h, model.ball_drag, model.wind)
+            _net_box(x, n_net, box)
+        resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.poles, model.contact,
+                         model.restitution_threshold, box)
+        update_entered(x, before, n_net, entered, model.opening)
+        stats[0].substeps += 1
+
+
+@njit(cache=True)
 def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
-    """Advance the state by ``n_steps`` steps of ``settings.dt``, in place; the only kernel that
-    unpacks a :class:`~netgym.physics.model.KernelModel` and its
-    :class:`~netgym.physics.model.Settings` for the passes of a step.
+    """Advance the state by ``n_steps`` steps of ``settings.dt``, in place.
 
     Balls move on their exact free-flight parabola between contacts, or through air (RK4) when
     the scene has some (net particles feel linear air drag). A step is split into equal substeps when a ball could otherwise move
@@ -121,47 +163,66 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     non-finite or above ``divergence_speed`` (the state is then invalid and the caller restores
     its copy).
     """
-    n_net, radius, gravity, drag = model.n_net, model.ball_radius, model.gravity, model.drag
-    springs, params = model.springs, model.spring_params
-    integrator, dt = settings.integrator, settings.dt
-    work, coef = scratch.work, scratch.coef
-    start = work[START_SLOT]  # every body's position at the start of the substep
-    before = start[n_net:]
-    n_balls = x.shape[0] - n_net
-    before_v = np.empty((n_balls, 3))
+    before_v = np.empty((x.shape[0] - model.n_net, 3))
     box = np.empty(6)
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        substeps = 1
-        if n_balls > 0:
-            closing = _closing_speed(x, v, n_net, radius, dt)
-            substeps = max(1, int(math.ceil(closing * dt / (settings.max_travel * radius))))
-        h = dt / substeps
-        for _sub in range(substeps):
-            for k in range(x.shape[0]):
-                for c in range(3):
-                    start[k, c] = x[k, c]
-            for b in range(n_balls):
-                for c in range(3):
-                    before_v[b, c] = v[n_net + b, c]
-            if integrator == Integrator.EXPLICIT_EULER or integrator == Integrator.SYMPLECTIC_EULER:
-                step_euler(x, v, inv_mass, gravity, drag, springs, params, h, work,
-                           integrator == Integrator.SYMPLECTIC_EULER)
-            elif integrator == Integrator.RK4:
-                step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
-            elif integrator == Integrator.IMEX_EULER:
-                step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, h, work, coef)
-            else:
-                stats[0].cg_iterations += step_implicit_euler(
-                    x, v, inv_mass, gravity, drag, springs, params, h, settings.cg_tolerance,
-                    settings.cg_max_iterations, work, coef)
-            if n_balls > 0:
-                _free_ball_flight(x, v, before, before_v, n_net, gravity, h, model.ball_drag, model.wind)
-                _net_box(x, n_net, box)
-            resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.poles, model.contact,
-                             model.restitution_threshold, box)
-            update_entered(x, before, n_net, entered, model.opening)
-            stats[0].substeps += 1
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
+
+@njit(cache=True)
+def _kinetic_energy(v, inv_mass):
+    """Kinetic energy of the free bodies (J)."""
+    total = 0.0
+    for k in range(v.shape[0]):
+        if inv_mass[k] > 0.0:
+            total += 0.5 * (v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2) / inv_mass[k]
+    return total
+
+
+@njit(cache=True)
+def _largest_displacement(x, earlier):
+    """Largest coordinate difference between ``x`` and ``earlier``."""
+    worst = 0.0
+    for k in range(x.shape[0]):
+        for c in range(3):
+            worst = max(worst, abs(x[k, c] - earlier[k, c]))
+    return worst
+
+
+@njit(cache=True)
+def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, history, memory, rest_displacement):
+    """Dynamic relaxation: :func:`advance` for at most ``n_steps`` steps, with kinetic damping
+    (every velocity is zeroed after a step whose kinetic energy fell, i.e. just past a peak),
+    until no coordinate moved more than ``rest_displacement`` over the last
+    ``history.shape[0]`` steps.
+
+    ``history`` (window, n_bodies, 3) holds the positions of the last steps and ``memory``
+    [steps recorded, last kinetic energy, steps taken by this call, at rest (1.0 or 0.0)]: both
+    carry the relaxation across calls. Returns OK or DIVERGED as :func:`advance` does.
+    """
+    window = history.shape[0]
+    before_v = np.empty((x.shape[0] - model.n_net, 3))
+    box = np.empty(6)
+    memory[2] = 0.0
+    memory[3] = 0.0
+    for i in range(n_steps):
+        if not _finite_and_below(v, settings.divergence_speed):
+            return DIVERGED
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
+        memory[2] = i + 1
+        kinetic = _kinetic_energy(v, inv_mass)
+        if kinetic < memory[1]:
+            v[:] = 0.0
+            kinetic = 0.0
+        memory[1] = kinetic
+        recorded = int(memory[0])
+        slot = recorded % window
+        if recorded >= window and _largest_displacement(x, history[slot]) < rest_displacement:
+            memory[3] = 1.0
+            return OK
+        history[slot] = x
+        memory[0] = recorded + 1
+    return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
