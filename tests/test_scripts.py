@@ -96,3 +96,15 @@ def test_episode_agreement_quick_compares_every_throw() -> None:
         assert int(rows[(pipeline, "2..N", "all")][4]) == 4    # throws 2 and 3 of both
         assert float(rows[(pipeline, "2..N", "all")][7]) > 0   # throws/s
     assert "Reference: 2 basket episodes of 3 throws" in out
+
+
+def test_pause_accuracy_quick_measures_every_pause() -> None:
+    from netgym.bench.pause_accuracy import PAUSES
+
+    out = _run("scripts/pause_accuracy.py", "--quick")
+    rows = [line.split("|") for line in out.splitlines() if line.startswith("| ") and "---" not in line][1:]
+    assert [row[1].strip() for row in rows] == list(PAUSES)
+    for row in rows:
+        assert int(row[2]) + int(out.split(" of 2 loaded nets")[0]) == 2  # every net measured or left out
+        p50, p90, worst = (float(v) for v in row[3].split("/"))
+        assert 0.0 <= p50 <= p90 <= worst

@@ -1,0 +1,126 @@
+"""How near the pause between throws comes to the equilibrium a fine relaxation finds.
+
+Seeded loaded nets: 1-10 balls dropped one after another into the basket (each from above the
+opening, with a small horizontal speed, each throw decided as usual and the net paused between
+them as usual); the pause after the last ball starts from the state the throw left (balls may
+still bounce). From that one state each pause runs: the default, variants, and reference relaxations
+(the same kinetic damping at a fine step, ended at 3 mm/s; at 1 mm/s piles of balls often do
+not come to rest within a minute: they creep). The error of a pause is the largest
+distance of a ball to its place in the reference and the RMS distance of the net particles.
+Comparing the finer reference with the reference tells how well defined the equilibrium is:
+friction makes where balls come to rest depend on the path there.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from tqdm import tqdm
+
+from netgym.errors import SimulationDivergedError
+from netgym.physics.simulator import Simulator
+
+REFERENCE = {"dt": 5e-4, "settle_speed": 3e-3, "max_time": 20.0}
+PAUSES = {  # label: arguments of Simulator.relax_plan (none: the default pause)
+    "default (IMEX Euler, 6 ms, to 0.1 m/s)": {},
+    "2 ms steps, to 0.1 m/s": {"dt": 2e-3},
+    "6 ms steps, to 0.01 m/s": {"settle_speed": 1e-2},
+    "finer reference (0.25 ms, to 3 mm/s)": {"dt": 2.5e-4, "settle_speed": 3e-3, "max_time": 20.0},
+}
+DROP_HEIGHT = 3.6             # m, above the basket's opening at z = 3
+DROP_SPREAD = 0.7             # m, drops land within +-this of the opening's centre in x and y
+DROP_SPEED = 1.0              # m/s, most horizontal speed of a drop along x and y
+
+
+@dataclass(frozen=True)
+class PauseResult:
+    """One pause from one loaded net: where its balls and net particles ended, and its cost."""
+
+    balls: np.ndarray
+    net: np.ndarray
+    wall_seconds: float
+    simulated_seconds: float
+
+
+def loaded_net(sim: Simulator, seed: int) -> int:
+    """Reset ``sim`` and drop 1-10 balls (drawn from ``seed``) into it; returns how many. The
+    scene is left as the last throw decided it, before its pause."""
+    rng = np.random.default_rng(seed)
+    sim.reset()
+    count = int(rng.integers(1, 11))
+    for _ in range(count):
+        x, y = rng.uniform(-DROP_SPREAD, DROP_SPREAD, 2)
+        vx, vy = rng.uniform(-DROP_SPEED, DROP_SPEED, 2)
+        sim.throw([x, y, DROP_HEIGHT], [vx, vy, 0.0])
+    return count
+
+
+def pause(sim: Simulator, **relaxation: Any) -> PauseResult:
+    """Run the pause (``relaxation``: arguments of ``relax_plan``; none for the default one)."""
+    start, time0 = time.perf_counter(), sim.state.time
+    sim.run(sim.relax_plan(**relaxation))
+    n = sim.model.n_net
+    return PauseResult(sim.state.x[n:].copy(), sim.state.x[:n].copy(), time.perf_counter() - start,
+                       sim.state.time - time0)
+
+
+def errors(result: PauseResult, reference: PauseResult) -> tuple[float, float]:
+    """(largest ball distance, RMS net particle distance) of ``result`` from ``reference`` (m)."""
+    ball = float(np.linalg.norm(result.balls - reference.balls, axis=1).max(initial=0.0))
+    net = float(np.sqrt(np.mean(np.sum((result.net - reference.net) ** 2, axis=1))))
+    return ball, net
+
+
+def pause_accuracy(nets: int, seed: int = 0, progress: bool = True) -> list[dict]:
+    """Per loaded net: the ball count and, per pause of PAUSES, its errors from the reference
+    and its wall and simulated seconds (``None`` for every pause where the reference, or a
+    pause, did not come to rest)."""
+    sim = Simulator("basket")
+    loaded_net(sim, seed)
+    pause(sim)  # compile the kernels outside the timed pauses
+    rows = []
+    for k in tqdm(range(nets), desc="loaded nets", unit="net", disable=not progress):
+        row: dict[str, Any] = {"balls": loaded_net(sim, seed + k), "pauses": None}
+        rows.append(row)
+        start = sim.checkpoint()
+        results = {}
+        for label, relaxation in (("reference", REFERENCE), *PAUSES.items()):
+            sim.restore(start)
+            try:
+                results[label] = pause(sim, **relaxation)
+            except SimulationDivergedError:  # did not come to rest within max_time
+                break
+        else:
+            row["pauses"] = {}
+            for label in PAUSES:
+                ball, net = errors(results[label], results["reference"])
+                row["pauses"][label] = {"ball": ball, "net": net, "wall": results[label].wall_seconds,
+                                        "simulated": results[label].simulated_seconds}
+    return rows
+
+
+def to_markdown(rows: list[dict]) -> str:
+    """The table: per pause, p50 / p90 / max of the errors, the share within 5 mm (balls) and
+    2 mm RMS (net), and the cost."""
+    settled = [r["pauses"] for r in rows if r["pauses"] is not None]
+    lines = [f"{len(rows) - len(settled)} of {len(rows)} loaded nets left out: a relaxation did not come to rest "
+             f"within {REFERENCE['max_time']:g} s.", "",
+             "| pause | loaded nets | ball error p50 / p90 / max (mm) | balls within 5 mm | "
+             "net RMS error p50 / p90 / max (mm) | net within 2 mm | wall ms p50 / p99 / max | simulated s p50 |",
+             "|---|---:|---|---:|---|---:|---|---:|"]
+    for label in PAUSES:
+        ball, net, wall, simulated = (np.array([p[label][key] for p in settled])
+                                      for key in ("ball", "net", "wall", "simulated"))
+        ball, net, wall = 1e3 * ball, 1e3 * net, 1e3 * wall
+        lines.append(f"| {label} | {len(settled)} | {_spread(ball)} | {100 * np.mean(ball <= 5.0):.0f}% | "
+                     f"{_spread(net)} | {100 * np.mean(net <= 2.0):.0f}% | "
+                     f"{np.median(wall):.1f} / {np.percentile(wall, 99):.1f} / {wall.max():.1f} | "
+                     f"{np.median(simulated):.2f} |")
+    return "\n".join(lines)
+
+
+def _spread(values: np.ndarray) -> str:
+    return f"{np.median(values):.1f} / {np.percentile(values, 90):.1f} / {values.max():.1f}"
