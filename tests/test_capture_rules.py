@@ -50,6 +50,22 @@ def test_a_line_capture_settles_before_the_next_throw() -> None:
     assert sim.n_balls == 1 and sim.ball_positions[0, 0] > sim.model.ball_radius  # at rest in the net
 
 
+def test_held_decides_once_the_ball_cannot_reach_the_mouth_before_the_time_limit() -> None:
+    """Under ``held`` a vertical mouth has no height to climb: a ball inside is decided once all
+    the free energy (its fall to the ground included) could not carry it to the mouth in the time
+    left, before the rest test passes (it is checked first); full simulation agrees. Near the
+    mouth, it is not."""
+    sim = Simulator("goal", {"capture_rule": "held"})
+    r = sim.model.ball_radius
+    deep = sim.throw([0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0])
+    assert deep.captured and deep.reason == "cannot_reach_opening" and deep.time < 0.5
+    sim.reset()
+    assert sim.throw([0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0], fast=False).captured
+    sim.reset()
+    leaving = sim.throw([0.3, 0.0, r + 0.01], [-3.0, 0.0, 0.0])  # rolls out through the mouth
+    assert not leaving.captured and leaving.reason != "cannot_reach_opening"
+
+
 @pytest.mark.parametrize("rule", ["line", "held"])
 def test_goal_fast_path_agrees_with_full_simulation(rule: str) -> None:
     throws = sample_throws("goal", 60, seed=5)

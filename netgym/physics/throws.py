@@ -4,8 +4,9 @@ A throw starts from a net at rest. Its fast path models only what the scene need
 flies in closed form while it is clear of the net, poles and other balls (the net, at rest,
 is not integrated then); once it comes near, everything is integrated with the scene's
 integrator; the throw ends as soon as its outcome is decided: the ball flies away from
-everything, cannot reach the opening any more (energy bound), or is at rest. ``fast=False``
-integrates everything from launch to the time limit instead, as a reference.
+everything, cannot reach the opening any more, nor before the time limit (energy bounds), or
+is at rest. ``fast=False`` integrates everything from launch to the time limit instead, as a
+reference.
 """
 
 from __future__ import annotations
@@ -288,5 +289,11 @@ class Throw:
         free += sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind) * max(0.0, deadline - s.time)
         reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
         if reach < sim.opening.lowest_z:
+            return "cannot_reach_opening"
+        # nor can it get to the opening before the deadline, at the speed all that energy and
+        # its own fall to the ground could give it (a vertical mouth has no height to climb)
+        fall = abs(m.gravity) * max(0.0, p[2] - m.ball_radius) / s.inv_mass[row]
+        top_speed = math.sqrt(2.0 * (free + fall) * s.inv_mass[row])
+        if top_speed * (deadline - s.time) < float(sim.opening.distance(p[None])[0]):
             return "cannot_reach_opening"
         return None
