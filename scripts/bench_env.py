@@ -2,6 +2,7 @@
 the throughput of 8 environments stepped together: a Gymnasium ``SyncVectorEnv`` in one process
 and SB3's ``SubprocVecEnv`` training environment (noisy oracle actions, the same run).
 
+Scenes: the basket, the goal (its ``line`` rule) and the goal under the ``held`` rule.
 Throws are drawn per seed: the thrower uniformly from the scene's ranges, the action either
 uniform in [-1, 1]^3 (half of them) or the ballistic oracle's plus Gaussian noise (sd 0.15),
 so that captures, rim hits and misses all occur. Each throw starts from the empty net at rest
@@ -19,7 +20,7 @@ from __future__ import annotations
 import argparse
 
 from netgym.bench.env_throughput import SETUPS, env_throughput
-from netgym.bench.fast_path import compare, summarise
+from netgym.bench.fast_path import CASES, compare, summarise
 from netgym.bench.throws import sample_throws
 
 
@@ -34,9 +35,9 @@ def main() -> None:
     print("| scene | throws | outcome agreement | captured | fast throws/s | full throws/s | speed-up | "
           "throws touching the net | fast throws/s on those |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for scene in ("basket", "goal"):
-        s = summarise(compare(scene, sample_throws(scene, count), 1 if args.quick else args.workers))
-        print(f"| {scene} | {s['throws']} | {100 * s['agreement']:.1f}% | {100 * s['captured']:.0f}% | "
+    for label, (scene, overrides) in CASES.items():
+        s = summarise(compare(scene, sample_throws(scene, count), 1 if args.quick else args.workers, overrides))
+        print(f"| {label} | {s['throws']} | {100 * s['agreement']:.1f}% | {100 * s['captured']:.0f}% | "
               f"{s['fast_throws_per_s']:.1f} | {s['full_throws_per_s']:.2f} | "
               f"{s['fast_throws_per_s'] / s['full_throws_per_s']:.0f}x | {s['touching']} | "
               f"{s['fast_touching_throws_per_s']:.1f} |")

@@ -13,6 +13,13 @@ from netgym.bench.throws import Throw
 from netgym.physics.simulator import Simulator
 
 
+CASES = {  # label: scene and overrides of the fast-path comparisons the benchmarks print
+    "basket": ("basket", None),
+    "goal": ("goal", None),
+    "goal, held": ("goal", {"capture_rule": "held"}),
+}
+
+
 @dataclass(frozen=True)
 class Outcome:
     """One throw simulated both ways."""
