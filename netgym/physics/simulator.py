@@ -250,8 +250,9 @@ class Simulator:
     def relax(self, max_time: float = 60.0) -> None:
         """Bring the net and the balls in it to their equilibrium: the pause between two throws.
 
-        Dynamic relaxation with kinetic damping (every velocity is zeroed just past a peak of
-        the kinetic energy), with ``settle_integrator`` at :attr:`settle_dt`, until no body has
+        Dynamic relaxation with kinetic damping of the net (its velocities are zeroed just past a
+        peak of its kinetic energy; the balls settle by their own friction and restitution), with
+        ``settle_integrator`` at :attr:`settle_dt`, until no body has
         moved more than ``simulation.settle_speed`` times RELAX_WINDOW over RELAX_WINDOW; if that
         diverges, again from where it started with the scene's integrator and ``dt``. Raises
         :class:`SimulationDivergedError` if it does not settle within ``max_time`` simulated seconds.
