@@ -211,7 +211,7 @@ def to_markdown(report: Report) -> str:
 
 EPISODES_TEXT = ("What training pays: whole 3-ball episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py` "
                  "has more rows). With the oracle every ball is caught, so after every throw but an episode's last "
-                 "the loaded net settles (dynamic relaxation with kinetic damping, IMEX Euler at "
+                 "the loaded net settles (dynamic relaxation, the net kinetically damped, IMEX Euler at "
                  "`simulation.settle_dt`, 6 ms on the basket) until nothing has moved faster than "
                  "`simulation.settle_speed` (0.1 m/s) over the last 0.1 s; `info['settle_substeps']` books that pause "
                  "in the step that caused it and `info['substeps']` all the work of a step.")
@@ -233,7 +233,7 @@ STATIC_PAUSE_TEXT = (
     "at 0.1 m/s instead (section 8: outcomes unchanged) was the cheaper gain.")
 PAUSE_ACCURACY_TEXT = (
     "Seeded loaded basket nets (1-10 balls dropped one after another, each throw decided and paused as usual): "
-    "from the state the last throw left, each pause against a reference relaxation (the same kinetic damping at "
+    "from the state the last throw left, each pause against a reference relaxation (the same relaxation at "
     "0.5 ms, ended at 3 mm/s) from the same state; errors are the largest ball distance and the RMS net particle "
     "distance to the reference's end state. `python scripts/pause_accuracy.py`. The finer reference (0.25 ms) "
     "shows how well the equilibrium is defined: friction makes where the balls of a pile come to rest depend on "
@@ -242,12 +242,13 @@ PAUSE_ACCURACY_TEXT = (
 PAUSE_TEXT = (
     "- The pause between throws at a larger step, in one kernel: dynamic relaxation with IMEX Euler at "
     "`simulation.settle_dt` (6 ms on the basket, within 90% of the linear stability limit; the scene's own "
-    "integrator and dt if it diverges), kinetic damping after every step and a sliding 0.1 s rest window, in one "
-    "numba call instead of a Python loop over 10 ms chunks. Oracle episodes on the basket, one run: 3-ball 81.1 -> "
-    "152.2 throws/s (step p99 42.3 -> 18.0 ms, settling substeps 17,700 -> 5,620), 10-ball 36.1 -> 109.2 "
-    "(p99 201 -> 33 ms), against the same kernel at the scene's 2 ms; the same outcomes of throws 2..N against "
-    "the reference pipeline (section 8). Tried earlier with the Python loop (damping checked every 10 ms), "
-    "a 3.7 ms pause settled more slowly than the 2 ms one (29 -> 21 throws/s).")
+    "integrator and dt if it diverges), the net kinetically damped after every step and a sliding 0.1 s rest "
+    "window, in one numba call instead of a Python loop over 10 ms chunks. On the episodes of section 8, one run: "
+    "64.2 throws/s against 55.0 for the same kernel at the scene's 2 ms, the same outcomes. Damping the balls "
+    "too made this pause 2-3x faster (basket oracle 3-ball episodes 119-185 throws/s, 10-ball 61-82, goal "
+    "18-28, in runs minutes apart) and left piles of balls still collapsing (section 9); not adopted. Tried "
+    "earlier with the Python loop (every body damped, checked every 10 ms), a 3.7 ms pause settled more "
+    "slowly than the 2 ms one (29 -> 21 throws/s).")
 NATIVE_VECTOR_ENV_TEXT = (
     "- Tried, then removed: a native vector environment (the integration of all environments of a step in one "
     "parallel numba call) and its SB3 adapter. Basket, 8 environments, noisy oracle actions, one run: 28.2 throws/s "
