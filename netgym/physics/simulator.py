@@ -281,14 +281,18 @@ class Simulator:
         """Dynamic relaxation with one integrator and dt (see :meth:`relax`)."""
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
         rest = RestTest(self.state.x.shape, round(RELAX_WINDOW / dt), speed * RELAX_WINDOW)
-        left, most = math.ceil(max_time / dt - 1e-9), max(1, round(RELAX_REQUEST / dt))
-        while left > 0:
-            n = min(left, most) if frames is None else min(left, most, frames.steps_to_next(self.state.time, dt))
+        started, taken = self.state.time, 0
+        total, most = math.ceil(max_time / dt - 1e-9), max(1, round(RELAX_REQUEST / dt))
+        while taken < total:
+            n = min(total - taken, most)
+            if frames is not None:
+                n = min(n, frames.steps_to_next(self.state.time, dt))
             yield Relax(n, integrator, dt, rest)
+            taken += rest.steps
+            self.state.time = started + taken * dt  # the same time however the requests were cut
             if rest.at_rest:
                 self.sleep()
                 return
-            left -= rest.steps
         raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
 
     def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
