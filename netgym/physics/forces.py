@@ -58,16 +58,25 @@ def accelerations(x, v, inv_mass, gravity, drag, springs, params, a):
 
 
 @njit(cache=True)
+def kinetic_energy(v, inv_mass):
+    """Kinetic energy of the free bodies (rows of ``v`` with ``inv_mass`` > 0), in joules."""
+    kinetic = 0.0
+    for k in range(v.shape[0]):
+        w = inv_mass[k]
+        if w > 0.0:
+            kinetic += 0.5 * (1.0 / w) * (v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
+    return kinetic
+
+
+@njit(cache=True)
 def energies(x, v, inv_mass, gravity, springs, params):
     """(kinetic, spring potential, gravitational potential) of all free bodies, in joules."""
-    kinetic = 0.0
+    kinetic = kinetic_energy(v, inv_mass)
     potential_g = 0.0
     for k in range(x.shape[0]):
         w = inv_mass[k]
         if w > 0.0:
-            m = 1.0 / w
-            kinetic += 0.5 * m * (v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
-            potential_g -= m * gravity * x[k, 2]
+            potential_g -= (1.0 / w) * gravity * x[k, 2]
     potential_s = 0.0
     for s in range(springs.shape[0]):
         i = springs[s, 0]

@@ -9,6 +9,7 @@ from numba import njit
 
 from netgym.physics.air import rk4_step
 from netgym.physics.contacts import resolve_contacts
+from netgym.physics.forces import kinetic_energy
 from netgym.physics.integrators import START_SLOT, step_euler, step_imex_euler, step_implicit_euler, step_rk4
 from netgym.physics.kinds import Integrator
 
@@ -173,16 +174,6 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
 
 
 @njit(cache=True)
-def _kinetic_energy(v, inv_mass):
-    """Kinetic energy of the free bodies (J)."""
-    total = 0.0
-    for k in range(v.shape[0]):
-        if inv_mass[k] > 0.0:
-            total += 0.5 * (v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2) / inv_mass[k]
-    return total
-
-
-@njit(cache=True)
 def _largest_displacement(x, earlier):
     """Largest coordinate difference between ``x`` and ``earlier``."""
     worst = 0.0
@@ -215,7 +206,7 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
             return DIVERGED
         _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
         memory[2] = i + 1
-        kinetic = _kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
+        kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
         if kinetic < memory[1]:
             v[:model.n_net] = 0.0
             kinetic = 0.0
