@@ -312,10 +312,11 @@ class Simulator:
               settle_frames: bool = False) -> ThrowResult:
         """Launch a ball and simulate until its outcome is decided (see :class:`Throw`).
 
-        The net is first brought to rest if it still moves. A captured ball stays in the scene;
-        a missed one is removed. With ``fast=False`` everything is integrated from launch to the
-        time limit (the reference the fast path is tested against). ``observer(sim)`` is called
-        after every request; with ``frames`` the requests end at its instants (see :class:`Throw`).
+        The net is first brought to rest if it still moves. A ball captured under the ``held``
+        rule stays in the scene; a missed one, or a goal under ``line``, is removed. With
+        ``fast=False`` everything is integrated from launch to the time limit (the reference the
+        fast path is tested against). ``observer(sim)`` is called after every request; with
+        ``frames`` the requests end at its instants (see :class:`Throw`).
         """
         return self.run(self.throw_plan(position, velocity, fast, frames, settle_frames), observer)
 

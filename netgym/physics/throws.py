@@ -36,6 +36,7 @@ AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bo
 TIME_EPSILON = 1e-9          # s: instants closer than this are the same
 AIR_PIECE = 0.1              # s: longest piece of a flight through air between two clearance checks
 MISS_FILMED_AFTER_LANDING = 0.5  # s of a missed ball's flight filmed after it first lands
+GOAL_FILMED = 0.5             # s of a goal (line rule) filmed after it is decided, the ball running into the net
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 
 
@@ -79,7 +80,7 @@ class Throw:
     :param frames: when given, the plan stops at every instant of this clock (integration
         chunks end at the substep nearest it; a :class:`~netgym.physics.plans.Tick` while the
         ball flies in closed form), from the launch on, and a miss decided in closed form is
-        flown on to its landing for the frames (then put back as decided).
+        flown on to its landing for the frames, a goal filmed on into the net (then put back as decided).
     :param settle_frames: also film the settling of the net before the launch (with ``frames``).
     """
 
@@ -97,7 +98,8 @@ class Throw:
 
     def plan(self) -> Plan:
         """The throw as a plan; it returns the :class:`ThrowResult`. The net is first brought to
-        rest if it still moves. A captured ball stays in the scene; a missed one is removed."""
+        rest if it still moves. A ball captured under ``held`` stays in the scene; a missed one,
+        or a goal under ``line``, is removed."""
         sim = self.sim
         settled = yield from sim.pause_plan(self.frames, self.settle_frames)
         start = sim.state.copy()
@@ -113,11 +115,20 @@ class Throw:
             raise
         if self.frames is not None and result.reason == "flies_away":
             yield from self._film_miss(sim.model.n_net + ball, t_limit=start.time + sim.config.simulation.time_limit)
-        if not result.captured:
-            sim.remove_ball(ball)
-        elif result.reason == "crossed_line":
-            sim.awake = True  # the ball is still on its way into the net: settle it before the next throw
+        if self.frames is not None and result.reason == "crossed_line":
+            yield from self._film_goal()
+        if not result.captured or sim.config.capture_rule == "line":
+            self._take_out(ball)
         return dataclasses.replace(result, **settled)
+
+    def _take_out(self, ball: int) -> None:
+        """Remove the ball once its throw is decided: a miss, or a goal under the ``line`` rule
+        (as after a goal in the sport, the next throw meets an empty goal). A ball still flying
+        clear of a sleeping scene leaves it asleep (nothing there moved); else it settles again."""
+        sim = self.sim
+        asleep = not sim.awake
+        sim.remove_ball(ball)
+        sim.awake = not asleep
 
     def _clearance(self, row: int) -> float:
         """Distance the ball in ``row`` can travel before it could touch the net, a pole or
@@ -265,6 +276,17 @@ class Throw:
         end = min(t_limit, s.time + flight.ground_time(s.x[row], s.v[row], self.ground) + MISS_FILMED_AFTER_LANDING)
         yield from self._film_flight(row, *kept, end)
         s.x[row], s.v[row], s.time = kept
+
+    def _film_goal(self) -> Plan:
+        """Film a goal on for GOAL_FILMED seconds, everything integrated (the ball runs into the
+        net), then put the scene, its time and its work counters back as decided."""
+        sim = self.sim
+        kept = sim.checkpoint()
+        cfg = sim.config.simulation
+        sim.awake = True
+        yield from integrate_until_stops(sim.state, Integrate(round(GOAL_FILMED / cfg.dt), sim.integrator, cfg.dt),
+                                         self.frames)
+        sim.restore(kept)
 
     def _potential_without(self, row: int, energy: Any) -> float:
         """Potential energy of everything but the ball in ``row`` (``energy``: the current one)."""
