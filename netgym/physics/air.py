@@ -13,20 +13,20 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from netgym.physics.jit import kernel
 
 MAX_FLIGHT_STEP = 1e-3   # s: longest RK4 step of the fast path's flight through air
 CONTACT_ITERATIONS = 4   # Newton iterations on the time a step meets the ground
 
 
-@njit(cache=True)
+@kernel
 def _acceleration(v0, v1, v2, gravity, k, wind):
     u0, u1, u2 = v0 - wind[0], v1 - wind[1], v2 - wind[2]
     speed = math.sqrt(u0 * u0 + u1 * u1 + u2 * u2)
     return -k * speed * u0, -k * speed * u1, gravity - k * speed * u2
 
 
-@njit(cache=True)
+@kernel
 def rk4_step(p, v, h, gravity, k, wind):
     """Advance one ball's position ``p`` and velocity ``v`` (3-vectors, in place) by ``h``
     through air: classical RK4 on ``x' = v, v' = g - k |v - wind| (v - wind)``."""
@@ -43,7 +43,7 @@ def rk4_step(p, v, h, gravity, k, wind):
     v[2] = w2 + h / 6.0 * (a2 + 2.0 * b2 + 2.0 * c2 + d2)
 
 
-@njit(cache=True)
+@kernel
 def _bounce(v, restitution, friction, threshold):
     """The ground impulse of netgym.physics.flight: restitution above the threshold, Coulomb
     friction bounded by friction times the normal impulse."""
@@ -58,7 +58,7 @@ def _bounce(v, restitution, friction, threshold):
         v[1] *= scale
 
 
-@njit(cache=True)
+@kernel
 def _slide_step(v, h, gravity, k, wind, friction):
     """One explicit step of a ball sliding on the ground: wind drag against Coulomb friction
     (``friction * |g|``), which stops the ball rather than reverse it."""
@@ -79,7 +79,7 @@ def _slide_step(v, h, gravity, k, wind, friction):
             v[0], v[1] = 0.0, 0.0
 
 
-@njit(cache=True)
+@kernel
 def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, max_step):
     """Move a lone ball (``p``, ``v`` 3-vectors, in place) through air for ``tau`` seconds:
     RK4 steps of at most ``max_step`` while airborne, the ground bounce where its lowest point
@@ -116,7 +116,7 @@ def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, m
             left -= h
 
 
-@njit(cache=True)
+@kernel
 def held_by_friction(v, gravity, k, wind, radius, friction, p):
     """True if the ball lies still on the ground and the wind cannot push it past friction."""
     if p[2] > radius + 1e-9 or abs(v[0]) + abs(v[1]) + abs(v[2]) > 1e-12:
@@ -137,7 +137,7 @@ def max_acceleration(speed: float, gravity: float, k: float, wind: np.ndarray) -
     return abs(gravity) + k * (speed + float(np.linalg.norm(wind))) ** 2
 
 
-@njit(cache=True)
+@kernel
 def flight_path(p, v, gravity, k, wind, radius, step, t_max):
     """The positions of a lone ball's free flight from ``p``, ``v`` through air every ``step``
     seconds, from the launch until its lowest point first reaches the ground (that point
@@ -156,7 +156,7 @@ def flight_path(p, v, gravity, k, wind, radius, step, t_max):
     return points[:n]
 
 
-@njit(cache=True)
+@kernel
 def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t_max):
     """Where a lone ball's free flight from ``p``, ``v`` (through air, until its lowest point
     first reaches the ground or ``t_max``) crosses the plane ``x[axis] = value`` moving the way

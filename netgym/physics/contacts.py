@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from netgym.physics.jit import kernel
 
 from netgym.physics.kinds import Contact
 from netgym.physics.rows import add_scaled
@@ -32,7 +32,7 @@ from netgym.physics.rows import add_scaled
 COINCIDENT = 1e-24   # m^2: squared distances below this leave no direction between two centres
 
 
-@njit(cache=True)
+@kernel
 def _direction(dx, dy, dz, dist2, ex, ey, ez):
     """(unit vector along (dx, dy, dz), its length), the squared length being ``dist2``. When the
     two centres coincide, a defined direction instead: perpendicular to the feature's axis
@@ -58,7 +58,7 @@ def _direction(dx, dy, dz, dist2, ex, ey, ez):
     return nx / norm, ny / norm, nz / norm, dist
 
 
-@njit(cache=True)
+@kernel
 def _static_slip(sx, sy, sz, nx, ny, nz, bound):
     """Static friction on positions (as in position-based dynamics): the tangential part of a
     contact's slip (sx, sy, sz) over one substep when it is within the Coulomb bound
@@ -70,7 +70,7 @@ def _static_slip(sx, sy, sz, nx, ny, nz, bound):
     return tx, ty, tz
 
 
-@njit(cache=True)
+@kernel
 def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitution, friction, threshold):
     """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j``.
 
@@ -128,7 +128,7 @@ def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitu
         add_scaled(v, j, wj, px, py, pz)
 
 
-@njit(cache=True)
+@kernel
 def _static_response(x, v, start, k, nx, ny, nz, depth, restitution, friction, threshold, hold):
     """Resolve a contact of body ``k`` with an immovable obstacle; ``n`` points out of the
     obstacle towards ``k``. ``hold``: a resting contact holds static friction on positions, as
@@ -155,7 +155,7 @@ def _static_response(x, v, start, k, nx, ny, nz, depth, restitution, friction, t
     v[k, 2] += jn * nz - scale * tz
 
 
-@njit(cache=True)
+@kernel
 def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
     for p in range(poles.shape[0]):
         ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
@@ -174,7 +174,7 @@ def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
                          coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold, True)
 
 
-@njit(cache=True)
+@kernel
 def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold):
     e, mu = coef[Contact.BALL_NET, 0], coef[Contact.BALL_NET, 1]
     r2 = radius * radius
@@ -220,7 +220,7 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold
                        e, mu, threshold)
 
 
-@njit(cache=True)
+@kernel
 def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef, threshold, net_box):
     """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass).
 
@@ -254,7 +254,7 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef
                              k >= n_net)
 
 
-@njit(cache=True)
+@kernel
 def clearance(x, n_net, row, radius, segments, poles):
     """How far the ball in ``row`` can move before it could touch a net particle or structural
     spring segment, a pole or another ball, all held still (exact distances). Negative when it

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from netgym.physics.jit import inline_kernel, kernel
 
 from netgym.physics.rows import add_pair_force
 
 
-@njit(cache=True, inline="always")
+@inline_kernel
 def spring_axis(x, i, j):
     """Length of the spring i-j and its unit direction from j to i (zero if degenerate)."""
     dx = x[i, 0] - x[j, 0]
@@ -25,7 +25,7 @@ def spring_axis(x, i, j):
     return length, dx * inv, dy * inv, dz * inv
 
 
-@njit(cache=True)
+@kernel
 def spring_forces(x, v, springs, params, f):
     """Add every spring's force to ``f`` (n, 3)."""
     for s in range(springs.shape[0]):
@@ -39,7 +39,7 @@ def spring_forces(x, v, springs, params, f):
         add_pair_force(f, i, j, mag * ux, mag * uy, mag * uz)
 
 
-@njit(cache=True)
+@kernel
 def accelerations(x, v, inv_mass, gravity, drag, springs, params, a):
     """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs,
     gravity and linear air drag ``-drag * v``."""
@@ -57,7 +57,7 @@ def accelerations(x, v, inv_mass, gravity, drag, springs, params, a):
             a[k, 2] = 0.0
 
 
-@njit(cache=True)
+@kernel
 def kinetic_energy(v, inv_mass):
     """Kinetic energy of the free bodies (rows of ``v`` with ``inv_mass`` > 0), in joules."""
     kinetic = 0.0
@@ -68,7 +68,7 @@ def kinetic_energy(v, inv_mass):
     return kinetic
 
 
-@njit(cache=True)
+@kernel
 def energies(x, v, inv_mass, gravity, springs, params):
     """(kinetic, spring potential, gravitational potential) of all free bodies, in joules."""
     kinetic = kinetic_energy(v, inv_mass)

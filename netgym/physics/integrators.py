@@ -24,7 +24,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from netgym.physics.jit import kernel
 
 from netgym.physics.forces import accelerations, spring_axis, spring_forces
 from netgym.physics.rows import add_pair_force, add_scaled
@@ -51,7 +51,7 @@ class Scratch(NamedTuple):
         return cls(np.zeros(work), np.zeros(coef))
 
 
-@njit(cache=True)
+@kernel
 def step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplectic):
     """One Euler step from a(x, v). Explicit: x += dt v(t), then v += dt a. Symplectic
     (semi-implicit): v += dt a first, then x += dt v(t+dt)."""
@@ -67,7 +67,7 @@ def step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplec
                 v[k, c] += dt * a[k, c]
 
 
-@njit(cache=True)
+@kernel
 def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef):
     """Implicit-explicit Euler: v += dt (elastic + gravity) / m explicitly, then the dampers and
     air drag implicitly, then x += dt v (symplectic order).
@@ -113,7 +113,7 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, co
             add_scaled(x, k, dt, v[k, 0], v[k, 1], v[k, 2])
 
 
-@njit(cache=True)
+@kernel
 def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
     """Classical fourth-order Runge-Kutta on (x, v)."""
     xs, vs, a, xsum, vsum = work[0], work[1], work[2], work[3], work[4]
@@ -140,7 +140,7 @@ def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
             v[k, c] += dt / 6.0 * vsum[k, c]
 
 
-@njit(cache=True)
+@kernel
 def _system_product(y, inv_mass, mass_scale, springs, coef, out):
     """out = (M - dt df/dv - dt^2 df/dx) y, with rows of fixed bodies zero; the drag part of
     df/dv is the factor ``mass_scale = 1 + dt * drag`` on M."""
@@ -166,7 +166,7 @@ def _system_product(y, inv_mass, mass_scale, springs, coef, out):
             out[k, 2] = 0.0
 
 
-@njit(cache=True)
+@kernel
 def _dot(a, b):
     total = 0.0
     for k in range(a.shape[0]):
@@ -174,7 +174,7 @@ def _dot(a, b):
     return total
 
 
-@njit(cache=True)
+@kernel
 def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tolerance, max_iterations,
                         work, coef):
     """Linearised backward Euler (Baraff & Witkin 1998).

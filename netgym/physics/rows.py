@@ -3,10 +3,10 @@ numba kernels."""
 
 from __future__ import annotations
 
-from numba import njit
+from netgym.physics.jit import inline_kernel
 
 
-@njit(cache=True, inline="always")
+@inline_kernel
 def add_scaled(rows, k, scale, x, y, z):
     """Add ``scale * (x, y, z)`` to row ``k``."""
     rows[k, 0] += scale * x
@@ -14,7 +14,7 @@ def add_scaled(rows, k, scale, x, y, z):
     rows[k, 2] += scale * z
 
 
-@njit(cache=True, inline="always")
+@inline_kernel
 def add_pair_force(f, i, j, fx, fy, fz):
     """Add the force (fx, fy, fz) to body i and its reaction to body j."""
     f[i, 0] += fx

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from netgym.physics.jit import kernel
 
 from netgym.physics.air import rk4_step
 from netgym.physics.contacts import resolve_contacts
@@ -23,7 +23,7 @@ def new_counters() -> np.ndarray:
     return np.zeros(1, dtype=COUNTERS)
 
 
-@njit(cache=True)
+@kernel
 def _finite_and_below(v, limit):
     """True if every velocity is finite and no speed exceeds ``limit``."""
     for k in range(v.shape[0]):
@@ -33,7 +33,7 @@ def _finite_and_below(v, limit):
     return True
 
 
-@njit(cache=True)
+@kernel
 def _closing_speed(x, v, n_net, radius, dt):
     """Largest speed of a ball plus that of any net particle that could reach it within dt:
     the relative speed the substeps must resolve."""
@@ -51,7 +51,7 @@ def _closing_speed(x, v, n_net, radius, dt):
     return worst
 
 
-@njit(cache=True)
+@kernel
 def _net_box(x, n_net, box):
     for c in range(3):
         box[c] = math.inf
@@ -62,7 +62,7 @@ def _net_box(x, n_net, box):
             box[c + 3] = max(box[c + 3], x[k, c])
 
 
-@njit(cache=True)
+@kernel
 def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind):
     """Balls feel only gravity (and air, when ``ball_drag`` > 0) between contacts: give them
     their free flight over ``h`` from the substep's start, whatever the integrator: the exact
@@ -81,7 +81,7 @@ def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind
         v[k, 2] += gravity * h
 
 
-@njit(cache=True)
+@kernel
 def update_entered(x, before, n_net, entered, opening):
     """Set a ball's flag when its centre crosses the opening inwards inside the rectangle,
     clear it when it crosses outwards."""
@@ -102,7 +102,7 @@ def update_entered(x, before, n_net, entered, opening):
             entered[b] = 1 if h1 < 0.0 else 0
 
 
-@njit(cache=True)
+@kernel
 def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast; the
     only kernel that unpacks a :class:`~netgym.physics.model.KernelModel` and its
@@ -146,7 +146,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, bo
         stats[0].substeps += 1
 
 
-@njit(cache=True)
+@kernel
 def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     """Advance the state by ``n_steps`` steps of ``settings.dt``, in place.
 
@@ -173,7 +173,7 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
-@njit(cache=True)
+@kernel
 def _largest_displacement(x, earlier):
     """Largest coordinate difference between ``x`` and ``earlier``."""
     worst = 0.0
@@ -183,7 +183,7 @@ def _largest_displacement(x, earlier):
     return worst
 
 
-@njit(cache=True)
+@kernel
 def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, history, memory, rest_displacement):
     """Dynamic relaxation: :func:`advance` for at most ``n_steps`` steps, with kinetic damping of
     the net (every net particle's velocity is zeroed after a step whose net kinetic energy fell,

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from netgym.physics.jit import kernel
 
 
-@njit(cache=True)
+@kernel
 def survey(x, v, row, reach, poles, box):
     """Scan every body around the ball in ``row``.
 
