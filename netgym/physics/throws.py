@@ -168,6 +168,7 @@ class Throw:
                 if self._clearance(row) < 0.0:
                     continue  # launched overlapping something: let the contacts act before deciding
             elif round((deadline - s.time) / cfg.dt) > 0:
+                sim.awake = True  # integration wakes the scene (full simulation integrates from the launch on)
                 request = Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
                 yield from integrate_until_stops(s, request, self.frames)
             crossed = crossed or (line and self._crossed_line(row, ball))
