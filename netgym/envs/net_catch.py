@@ -139,7 +139,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``launch_noise`` | None | ``(speed, elevation, azimuth)`` standard deviations (m/s, degrees) of Gaussian noise on each release; ``info["aimed_velocity"]`` is the intended one |
     | ``feedback`` | False | append the previous throw's outcome and where it passed the opening to the observation |
     | ``randomize`` | None | domain randomisation: ``{scene field: (low, high)}`` drawn uniformly per episode (``info["scene_draws"]``; fields that change the spaces are refused at reset) |
-    | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit) or ``"line"`` (goal: the whole ball crossed the mouth) |
+    | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit; caught balls stay) or ``"line"`` (goal: the whole ball crossed the mouth; the ball is then taken out) |
 
     ## Registered ids
 
@@ -154,7 +154,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
       the default integrator became IMEX Euler at 2 ms (was symplectic Euler at 0.5 ms; the
       shipped PPO model was trained on the old default and scores the same on the new one);
       resting contacts hold static friction (balls no longer creep on the settled net); the
-      goal scene counts a goal by the ``line`` rule; ``info`` books the settling pause.
+      goal scene counts a goal by the ``line`` rule, and takes the ball out once it is scored;
+      ``info`` books the settling pause.
       Options added without changing v0's dynamics: ``reset(options=...)``, ``render_settling``,
       and the variation arguments ``wind``, ``launch_noise``, ``feedback`` (off by default).
     - ``NetCatchWindy-v0`` and ``NetCatchNoisy-v0``: new in netgym 0.1.
