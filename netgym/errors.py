@@ -23,5 +23,11 @@ class SimulationDivergedError(NetgymError, FloatingPointError):
     """
 
 
+class NetNotAtRestError(NetgymError, RuntimeError):
+    """A relaxation (the pause between throws, the settling of a new net) did not pass its rest
+    test within its time limit: for example a pile of balls that creeps on faster than a strict
+    ``simulation.settle_speed`` allows. The state is left where the relaxation ended."""
+
+
 class EpisodeEndedError(NetgymError, RuntimeError):
     """``step`` was called on an episode that has ended (or before the first ``reset``)."""

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -201,6 +203,20 @@ def test_a_diverging_pause_starts_again_with_the_scene_integrator(monkeypatch: p
     pause = sim.run(sim.pause_plan())
     assert np.array_equal(sim.state.x, alone.x) and sim.state.time == alone.time
     assert not sim.awake and pause["settle_substeps"] > 0
+
+
+def test_a_pause_that_cannot_come_to_rest_in_time_raises_a_named_error() -> None:
+    """Not a divergence: the state is left, finite, where the relaxation ended, and the pause is
+    not run again with another integrator (that is for divergence only)."""
+    from netgym.errors import NetNotAtRestError
+
+    sim = Simulator("basket")
+    sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, still falling
+    start = sim.state.time
+    with pytest.raises(NetNotAtRestError, match="did not come to rest .* within 0.2 s of relaxation"):
+        sim.relax(max_time=0.2)
+    assert sim.state.time == pytest.approx(start + math.ceil(0.2 / sim.settle_dt) * sim.settle_dt, abs=1e-12)
+    assert np.isfinite(sim.state.x).all() and sim.awake
 
 
 @pytest.mark.parametrize("seed", [0, 1])

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from tqdm import tqdm
 
-from netgym.errors import SimulationDivergedError
+from netgym.errors import NetNotAtRestError
 from netgym.physics.simulator import Simulator
 
 REFERENCE = {"dt": 5e-4, "settle_speed": 3e-3, "max_time": 20.0}
@@ -98,7 +98,7 @@ def pause_accuracy(nets: int, seed: int = 0, progress: bool = True) -> list[dict
             sim.restore(start)
             try:
                 results[label] = pause(sim, **relaxation)
-            except SimulationDivergedError:  # did not come to rest within max_time
+            except NetNotAtRestError:  # did not come to rest within max_time
                 break
         else:
             row["pauses"] = {}

@@ -18,7 +18,7 @@ import numpy as np
 
 from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import AirConfig, SceneConfig, load_scene
-from netgym.errors import SimulationDivergedError, UnstableTimeStepError
+from netgym.errors import NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
 from netgym.physics.forces import energies
 from netgym.physics.integration import RestTest, Workspace
 from netgym.physics.kinds import Integrator
@@ -255,7 +255,7 @@ class Simulator:
         ``settle_integrator`` at :attr:`settle_dt`, until no body has
         moved more than ``simulation.settle_speed`` times RELAX_WINDOW over RELAX_WINDOW; if that
         diverges, again from where it started with the scene's integrator and ``dt``. Raises
-        :class:`SimulationDivergedError` if it does not settle within ``max_time`` simulated seconds.
+        :class:`NetNotAtRestError` if it does not settle within ``max_time`` simulated seconds.
         """
         self.run(self.relax_plan(max_time))
 
@@ -293,7 +293,9 @@ class Simulator:
             if rest.at_rest:
                 self.sleep()
                 return
-        raise SimulationDivergedError(f"the net did not come to rest within {max_time:g} s of relaxation")
+        raise NetNotAtRestError(f"the net and the balls in it did not come to rest (nothing faster than "
+                                f"{speed:g} m/s over {RELAX_WINDOW:g} s) within {max_time:g} s of relaxation; "
+                                f"the state is left where the relaxation ended")
 
     def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
         """The pause between two throws, as a plan: :meth:`relax_plan` if the scene still moves,
