@@ -52,12 +52,14 @@ class Workspace:
 class RestTest:
     """What a relaxation remembers between kernel calls: the positions of its last ``window``
     steps, its last kinetic energy, and whether no coordinate moved more than ``displacement``
-    (m) over the window: see :func:`~netgym.physics.stepping.relax`."""
+    (m) over the window; ``damped``: the net is kinetically damped meanwhile (see
+    :func:`~netgym.physics.stepping.relax`)."""
 
-    def __init__(self, shape: tuple[int, int], window: int, displacement: float) -> None:
+    def __init__(self, shape: tuple[int, int], window: int, displacement: float, damped: bool = True) -> None:
         self.history = np.zeros((max(1, window), *shape))
         self.memory = np.array([0.0, np.inf, 0.0, 0.0])
         self.displacement = displacement
+        self.damped = damped
 
     @property
     def steps(self) -> int:
@@ -89,7 +91,7 @@ def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: in
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
         workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.history, rest.memory,
-        rest.displacement), rest.steps))
+        rest.displacement, rest.damped), rest.steps))
 
 
 def _guarded(target: Integrand, settings: Settings, n_steps: int,

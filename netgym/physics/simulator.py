@@ -38,6 +38,9 @@ RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing 
 MAX_LAUNCH_SPEED = 100.0      # m/s
 SETTLE_TIME = 60.0            # s: the most simulated time the settling of a new net may take
 NEW_NET_SETTLE_SPEED = 0.01   # m/s: a new net settles (once per scene) until nothing moves faster (or settle_speed)
+NEW_NET_REST_SPEED = 1e-3     # m/s: then, on the scene's own integrator and dt, undamped, until nothing moves faster
+NEW_NET_WINDOW = 1.0          # s over which it must have moved nothing faster: from rest a creeping net gathers
+                              # speed slowly, and passed a 0.1 s window while still sagging
 
 
 @dataclass(frozen=True)
@@ -260,27 +263,31 @@ class Simulator:
         self.run(self.relax_plan(max_time))
 
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
-                   frames: FrameClock | None = None, settle_speed: float | None = None) -> Plan:
+                   frames: FrameClock | None = None, settle_speed: float | None = None,
+                   damped: bool = True, window: float = RELAX_WINDOW) -> Plan:
         """:meth:`relax` as a plan (see :meth:`run`); with ``frames``, its requests end at the
         clock's instants too; ``integrator`` and ``dt`` replace the pause's own (then with no
-        fallback), ``settle_speed`` the scene's ``simulation.settle_speed``."""
+        fallback), ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False``
+        leaves out the kinetic damping (the net's own dynamics come to rest, or not), ``window``
+        is the time over which nothing may have moved faster than the settle speed."""
         if integrator is not None or dt is not None:
             integrator = self.settle_integrator if integrator is None else integrator
             yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt, frames,
-                                        settle_speed)
+                                        settle_speed, damped, window)
             return
         try:
-            yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, frames, settle_speed)
+            yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, frames, settle_speed,
+                                        damped, window)
         except SimulationDivergedError:
             if (self.settle_integrator, self.settle_dt) == (self.integrator, self.dt):
                 raise
-            yield from self._relaxation(max_time, self.integrator, self.dt, frames, settle_speed)
+            yield from self._relaxation(max_time, self.integrator, self.dt, frames, settle_speed, damped, window)
 
     def _relaxation(self, max_time: float, integrator: int, dt: float, frames: FrameClock | None,
-                    settle_speed: float | None) -> Plan:
-        """Dynamic relaxation with one integrator and dt (see :meth:`relax`)."""
+                    settle_speed: float | None, damped: bool, window: float) -> Plan:
+        """Dynamic relaxation with one integrator and dt (see :meth:`relax_plan`)."""
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
-        rest = RestTest(self.state.x.shape, round(RELAX_WINDOW / dt), speed * RELAX_WINDOW)
+        rest = RestTest(self.state.x.shape, round(window / dt), speed * window, damped)
         started, taken = self.state.time, 0
         total, most = math.ceil(max_time / dt - 1e-9), max(1, round(RELAX_REQUEST / dt))
         while taken < total:
@@ -294,7 +301,7 @@ class Simulator:
                 self.sleep()
                 return
         raise NetNotAtRestError(f"the net and the balls in it did not come to rest (nothing faster than "
-                                f"{speed:g} m/s over {RELAX_WINDOW:g} s) within {max_time:g} s of relaxation; "
+                                f"{speed:g} m/s over {window:g} s) within {max_time:g} s of relaxation; "
                                 f"the state is left where the relaxation ended")
 
     def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
@@ -355,8 +362,10 @@ class Simulator:
         if key not in _SETTLED:
             progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
             speed = min(NEW_NET_SETTLE_SPEED, self.config.simulation.settle_speed)
-            try:
+            try:  # kinetically damped near the equilibrium, then on the scene's own dynamics until it stays
                 self.run(self.relax_plan(SETTLE_TIME, settle_speed=speed), progress)
+                self.run(self.relax_plan(SETTLE_TIME, self.integrator, self.dt, settle_speed=NEW_NET_REST_SPEED,
+                                         damped=False, window=NEW_NET_WINDOW), progress)
             except SimulationDivergedError:
                 # an unstable dt (allowed with check_stability=False) cannot hold the net still:
                 # start it from the equilibrium found with implicit Euler instead

@@ -184,11 +184,12 @@ def _largest_displacement(x, earlier):
 
 
 @kernel
-def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, history, memory, rest_displacement):
+def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, history, memory, rest_displacement,
+          damped):
     """Dynamic relaxation: :func:`advance` for at most ``n_steps`` steps, with kinetic damping of
-    the net (every net particle's velocity is zeroed after a step whose net kinetic energy fell,
-    i.e. just past a peak), until no coordinate moved more than ``rest_displacement`` over the
-    last ``history.shape[0]`` steps. Balls keep their own dynamics (friction and restitution
+    the net when ``damped`` (every net particle's velocity is zeroed after a step whose net
+    kinetic energy fell, i.e. just past a peak), until no coordinate moved more than
+    ``rest_displacement`` over the last ``history.shape[0]`` steps. Balls keep their own dynamics (friction and restitution
     settle them): zeroing them too would hold a collapsing pile back step by step, so that it
     passed the rest test while still falling.
 
@@ -207,7 +208,7 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
         _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
         memory[2] = i + 1
         kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
-        if kinetic < memory[1]:
+        if damped and kinetic < memory[1]:
             v[:model.n_net] = 0.0
             kinetic = 0.0
         memory[1] = kinetic
