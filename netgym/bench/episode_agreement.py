@@ -77,7 +77,10 @@ def _episodes(job: tuple[str, int, bool, Mapping[str, Any], list[Episode | int],
     scene, balls, fast, overrides, todo, progress = job
     env = NetCatchEnv(scene=scene, balls_per_episode=balls, fast=fast, overrides=dict(overrides))
     oracle = ballistic_oracle(scene)
-    _run(env, 0, "noisy oracle", None, oracle)  # compile the kernels outside the timed episodes
+    try:
+        _run(env, 0, "noisy oracle", None, oracle)  # compile the kernels outside the timed episodes
+    except NetNotAtRestError:
+        pass  # compiled all the same
     done = []
     for item in tqdm(todo, desc=f"{scene}, {'fast' if fast else 'full'} {dict(overrides)}", unit="episode",
                      disable=not progress):

@@ -63,8 +63,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     A thrower stands at a random place around the net (default scene ``basket``: the seed's
     open-top box net, 2 x 2 m opening at 3 m). Each step is one throw: the agent chooses the
     launch speed, elevation and azimuth of a ball, and the simulator runs the throw until its
-    outcome is decided. An episode is a sequence of throws into the same net; caught balls stay
-    in it, so later throws meet a loaded, deformed net and other balls.
+    outcome is decided. An episode is a sequence of throws into the same net; under the ``held``
+    capture rule (the basket's) caught balls stay in it, so later throws meet a loaded, deformed
+    net and other balls; under ``line`` (the goal's) a goal is taken out once scored.
 
     ## Action space
 
