@@ -306,15 +306,34 @@ class Simulator:
 
     def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
         """The pause between two throws, as a plan: :meth:`relax_plan` if the scene still moves,
-        else nothing. Returns ``{"settle_substeps": ..., "settle_time": ...}``, the substeps and
-        simulated seconds it took. With ``frames`` and ``film`` its requests end at the clock's
-        instants; with ``frames`` alone the clock is paused over it (restart it at the launch)."""
+        else nothing; a net with no ball in it is put back at its equilibrium, the settled net
+        (filmed, it relaxes for the frames first, then is put back as unfilmed). Returns
+        ``{"settle_substeps": ..., "settle_time": ...}``, the substeps and simulated seconds it
+        took. With ``frames`` and ``film`` its requests end at the clock's instants; with
+        ``frames`` alone the clock is paused over it (restart it at the launch)."""
         substeps, time = self.substeps, self.state.time
         if self.awake:
             if frames is not None and not film:
                 frames.pause()
-            yield from self.relax_plan(frames=frames if film else None)
+            if self.n_balls > 0:
+                yield from self.relax_plan(frames=frames if film else None)
+            else:
+                if frames is not None and film:
+                    kept = self.checkpoint()
+                    yield from self.relax_plan(frames=frames)
+                    self.restore(kept)
+                    frames.restart(time)
+                self._settle_empty_net()
         return {"settle_substeps": self.substeps - substeps, "settle_time": self.state.time - time}
+
+    def _settle_empty_net(self) -> None:
+        """Put the net, with no ball in it, at rest in the shape every episode starts from (its
+        equilibrium; where the net lies on the ground, as the goal's bottom does, friction could
+        have held a disturbed net a little elsewhere), keeping the time."""
+        time = self.state.time
+        self.state.restore(self._rest_state)
+        self.state.time = time
+        self.awake = False
 
     def throw(self, position: Any, velocity: Any, fast: bool = True,
               observer: Callable[["Simulator"], None] | None = None, frames: FrameClock | None = None,
