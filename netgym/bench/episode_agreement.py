@@ -164,5 +164,5 @@ def agreement_table(scene: str, reference_episodes: list[Episode], candidates: l
     seeds = [e.seed for e in reference_episodes]
     left_out = max(seeds) - min(seeds) + 1 - len(seeds)
     return "\n".join(rows) + (f"\n\nReference: {len(reference_episodes)} {scene} episodes of {balls} throws, "
-                              f"{throws / seconds:.2f} throws/s; {left_out} episodes left out, their pause "
-                              f"never coming to rest.")
+                              f"{throws / seconds:.2f} throws/s; left out: {left_out} (their pause never came "
+                              f"to rest).")
