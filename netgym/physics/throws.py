@@ -155,7 +155,7 @@ class Throw:
         deadline = t0 + cfg.time_limit
         chunk = max(1, round(CHUNK_SECONDS / cfg.dt))
         reference_energy = self._potential_without(row, sim.energy())
-        rest_since: float | None = None
+        recent: list[tuple[float, np.ndarray]] = []  # (time, positions) at the checks of the last REST_WINDOW
         line = sim.config.capture_rule == "line"
         crossed = False
         while True:
@@ -180,9 +180,11 @@ class Throw:
                 break
             if not fast:
                 continue
-            local, others, lo, hi = self._survey(row, AWAKE_MARGIN)
-            rest_since = (s.time if rest_since is None else rest_since) if local < cfg.rest_speed else None
-            reason = self._decided(row, reference_energy, rest_since, lo, hi, deadline)
+            _, others, lo, hi = self._survey(row, AWAKE_MARGIN)
+            recent.append((s.time, s.x.copy()))
+            while len(recent) > 1 and recent[1][0] <= s.time - REST_WINDOW + TIME_EPSILON:
+                recent.pop(0)
+            reason = self._decided(row, reference_energy, self._at_rest(row, recent), lo, hi, deadline)
             if reason is not None:
                 break
             if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
@@ -294,7 +296,21 @@ class Throw:
         s = self.sim.state
         return energy.spring + energy.gravity + self.sim.model.gravity / s.inv_mass[row] * s.x[row, 2]
 
-    def _decided(self, row: int, reference_energy: float, rest_since: float | None,
+    def _at_rest(self, row: int, recent: list[tuple[float, np.ndarray]]) -> bool:
+        """The ball in ``row`` and the bodies near it (centres within twice its radius plus
+        REST_REACH of its centre) moved no coordinate more than ``rest_speed`` x REST_WINDOW between
+        any check of the last REST_WINDOW (``recent``, oldest first, covering it) and now.
+        Positions, not velocities: a light net under a resting ball keeps a velocity jitter of
+        the order of its acceleration x dt (2.8 cm/s on the goal's roof at 0.5 ms) while nothing
+        moves."""
+        s, m = self.sim.state, self.sim.model
+        if s.time - recent[0][0] < REST_WINDOW - TIME_EPSILON:
+            return False
+        near = np.sum((s.x - s.x[row]) ** 2, axis=1) < (2.0 * m.ball_radius + REST_REACH) ** 2
+        now, bound = s.x[near], self.sim.config.simulation.rest_speed * REST_WINDOW
+        return all(float(np.abs(now - x[near]).max()) < bound for _, x in recent[:-1])
+
+    def _decided(self, row: int, reference_energy: float, at_rest: bool,
                  lo: np.ndarray, hi: np.ndarray, deadline: float) -> str | None:
         """The reason the throw's outcome is decided now, or None (``lo``, ``hi``: the region
         from :meth:`_survey` with AWAKE_MARGIN). The energy bound counts, besides the energy
@@ -305,7 +321,7 @@ class Throw:
         outside = bool(np.any(p < lo) or np.any(p > hi))
         if outside and self._never_enters(row, lo, hi, math.inf):
             return "flies_away"
-        if rest_since is not None and s.time - rest_since >= REST_WINDOW - 1e-12:
+        if at_rest:
             return "at_rest"
         energy = sim.energy()  # one evaluation per check: kinetic and potential together
         free = energy.kinetic + max(0.0, self._potential_without(row, energy) - reference_energy)
