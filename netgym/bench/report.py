@@ -256,11 +256,14 @@ ERROR_MODEL_TEXT = (
     "zero check before each division. Bitwise the same results (the golden episodes); on the basket, one run: "
     "IMEX Euler step 112 -> 89 us, the accelerations of the explicit methods 41 -> 35 us.")
 NOTHING_TO_SETTLE_TEXT = (
-    "- No pause where nothing moved: a missed ball flown in closed form clear of the sleeping scene leaves it "
-    "asleep (it woke the net for a pause of at least the 0.1 s rest window before), and a goal under the `line` "
-    "rule is taken out once scored, as in the sport (it rolled on in the goal, and the next throw waited seconds "
-    "for it to rest). One run of `scripts/bench_episodes.py` before and after: basket random 3-ball episodes "
-    "118 -> 183 throws/s (step p50 3.1 -> 0.4 ms), goal oracle 5.4 -> 2066 throws/s.")
+    "- No pause where nothing moved, none to compute where the answer is known: a missed ball flown in closed "
+    "form clear of the sleeping scene leaves it asleep (it woke the net for a pause of at least the 0.1 s rest "
+    "window before); a goal under the `line` rule is taken out once scored, as in the sport (it rolled on in the "
+    "goal, and the next throw waited seconds for it to rest); a net left moving with no ball in it is put back in "
+    "its settled shape instead of being relaxed. `scripts/bench_episodes.py`, 2026-11-26 against 2026-11-27 "
+    "(with that day's other changes: the settled net at rest, the rest test on positions; runs a day apart): "
+    "basket random 3-ball episodes 118.5 -> 327.1 throws/s (step p50 3.1 -> 0.3 ms), goal oracle 6.1 -> 3481.6, "
+    "goal random 16.8 -> 87.2.")
 NATIVE_VECTOR_ENV_TEXT = (
     "- Tried, then removed: a native vector environment (the integration of all environments of a step in one "
     "parallel numba call) and its SB3 adapter. Basket, 8 environments, noisy oracle actions, one run: 28.2 throws/s "
