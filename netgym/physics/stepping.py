@@ -207,11 +207,12 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
             return DIVERGED
         _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
         memory[2] = i + 1
-        kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
-        if damped and kinetic < memory[1]:
-            v[:model.n_net] = 0.0
-            kinetic = 0.0
-        memory[1] = kinetic
+        if damped:
+            kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
+            if kinetic < memory[1]:
+                v[:model.n_net] = 0.0
+                kinetic = 0.0
+            memory[1] = kinetic
         recorded = int(memory[0])
         slot = recorded % window
         if recorded >= window and _largest_displacement(x, history[slot]) < rest_displacement:

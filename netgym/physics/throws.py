@@ -126,9 +126,9 @@ class Throw:
         (as after a goal in the sport, the next throw meets an empty goal). A ball still flying
         clear of a sleeping scene leaves it asleep (nothing there moved); else it settles again."""
         sim = self.sim
-        asleep = not sim.awake
+        awake = sim.awake
         sim.remove_ball(ball)
-        sim.awake = not asleep
+        sim.awake = awake
 
     def _clearance(self, row: int) -> float:
         """Distance the ball in ``row`` can travel before it could touch the net, a pole or
@@ -136,16 +136,15 @@ class Throw:
         m = self.sim.model
         return contacts.clearance(self.sim.state.x, m.n_net, row, m.ball_radius, m.segments, m.poles)
 
-    def _survey(self, row: int, margin: float) -> tuple[float, float, np.ndarray, np.ndarray]:
-        """``(local, others, lo, hi)``: the largest velocity component of the ball in ``row`` and of
-        the bodies that could touch it soon (within REST_REACH of its surface), which decides
-        whether it has come to rest; the same over all other bodies; and the bounding box of the
-        net, poles and other balls grown by the ball radius + pole radius + ``margin``."""
+    def _survey(self, row: int, margin: float) -> tuple[float, np.ndarray, np.ndarray]:
+        """``(others, lo, hi)``: the largest velocity component of every body but the ball in
+        ``row``, and the bounding box of the net, poles and other balls grown by the ball radius +
+        pole radius + ``margin``."""
         m, s = self.sim.model, self.sim.state
         box = np.empty(6)
-        local, others = survey(s.x, s.v, row, 2.0 * m.ball_radius + REST_REACH, m.poles, box)
+        others = survey(s.x, s.v, row, m.poles, box)
         grow = m.ball_radius + float(m.poles[:, 6].max(initial=0.0)) + margin
-        return local, others, box[:3] - grow, box[3:] + grow
+        return others, box[:3] - grow, box[3:] + grow
 
     def _steps(self, ball: int) -> Plan:
         sim, fast = self.sim, self.fast
@@ -180,7 +179,7 @@ class Throw:
                 break
             if not fast:
                 continue
-            _, others, lo, hi = self._survey(row, AWAKE_MARGIN)
+            others, lo, hi = self._survey(row, AWAKE_MARGIN)
             recent.append((s.time, s.x.copy()))
             while len(recent) > 1 and recent[1][0] <= s.time - REST_WINDOW + TIME_EPSILON:
                 recent.pop(0)
@@ -206,7 +205,7 @@ class Throw:
         simulating."""
         sim = self.sim
         s, n_net = sim.state, sim.model.n_net
-        _, _, lo, hi = self._survey(row, CLEARANCE)
+        _, lo, hi = self._survey(row, CLEARANCE)
         while True:
             if self._never_enters(row, lo, hi, deadline - s.time):
                 return "flies_away"
