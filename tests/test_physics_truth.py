@@ -193,7 +193,7 @@ def test_imex_damper_of_one_spring_is_two_backward_euler_half_steps() -> None:
 
 def test_imex_euler_is_stable_far_beyond_the_explicit_dampers_limit() -> None:
     """The seed's dampers limit explicit methods to < 1 ms on the basket; IMEX Euler runs the
-    net at 5 ms (its estimate is the elastic limit) and its energy decays."""
+    net at 5 ms and its energy decays."""
     with pytest.raises(UnstableTimeStepError):
         Simulator("basket", {"simulation.integrator": "symplectic_euler", "simulation.dt": 5e-3})
     sim = Simulator("basket", {"simulation.integrator": "imex_euler", "simulation.dt": 5e-3})
@@ -204,3 +204,69 @@ def test_imex_euler_is_stable_far_beyond_the_explicit_dampers_limit() -> None:
     sim.step(400)  # 2 s
     assert sim.energy().total < start
     assert np.abs(sim.state.v).max() < 0.05
+
+
+def _one_damped_spring(ks: float, kd: float, mass: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A free particle hung at rest length from a fixed one (positions, inverse masses, springs,
+    spring parameters)."""
+    x = np.array([[0.0, 0.0, 0.0], [0.6, 0.0, 0.8]])
+    return x, np.array([0.0, 1.0 / mass]), np.array([[0, 1]]), np.array([[1.0, ks, kd]])
+
+
+def _spectral_radius_of_the_imex_step(x, inv_mass, springs, params, dt) -> float:
+    """Spectral radius of the Jacobian of the IMEX Euler kernel's step (free particle's position
+    and velocity) about rest, by central differences."""
+    from netgym.physics.integrators import step_imex_euler
+
+    def step(state: np.ndarray) -> np.ndarray:
+        xs, vs = x.copy(), np.zeros_like(x)
+        xs[1] += state[:3]
+        vs[1] = state[3:]
+        work, coef = Scratch.sized(2, 1)
+        step_imex_euler(xs, vs, inv_mass, 0.0, 0.0, springs, params, dt, work, coef)
+        return np.concatenate([xs[1] - x[1], vs[1]])
+
+    eps = 1e-7
+    jacobian = np.column_stack([(step(eps * e) - step(-eps * e)) / (2 * eps) for e in np.eye(6)])
+    return float(max(abs(np.linalg.eigvals(jacobian))))
+
+
+def test_imex_stability_limit_of_one_damped_spring_is_analytic_and_the_kernels() -> None:
+    """One spring, damper swept over two half steps: along the spring the step is stable while
+    h^2 omega^2 g < 2 (1 + g), g = 1 / (1 + h kd w / 2)^2, a quadratic in h. The estimate finds
+    its root, far beyond the elastic limit 2 / omega, and the kernel's own step matrix turns
+    unstable there."""
+    from netgym.physics.stability import net_modes
+
+    ks, kd, mass = 1500.0, 50.0, 2.0
+    x, inv_mass, springs, params = _one_damped_spring(ks, kd, mass)
+    omega2, c = ks / mass, kd / mass
+    a = omega2 - c * c / 2.0                      # h^2 (omega^2 - c^2 / 2) - 2 c h - 4 = 0
+    analytic = (2.0 * c + math.sqrt(4.0 * c * c + 16.0 * a)) / (2.0 * a)
+    limit = net_modes(x, inv_mass, springs, params).imex_limit
+    assert limit == pytest.approx(analytic, rel=3e-3)
+    assert limit > 2.0 * (2.0 / math.sqrt(omega2))
+    assert _spectral_radius_of_the_imex_step(x, inv_mass, springs, params, 0.98 * analytic) <= 1.0 + 1e-6
+    assert _spectral_radius_of_the_imex_step(x, inv_mass, springs, params, 1.02 * analytic) > 1.02
+
+
+@pytest.mark.parametrize("ks", [1500.0, 15000.0])
+def test_imex_stability_limit_on_the_net_is_where_the_net_diverges(ks: float) -> None:
+    """On the basket (default and ten times stiffer springs), perturbed by 1 cm from rest, IMEX
+    Euler keeps the net for 2 s just below its estimated limit and diverges just above it."""
+    from netgym.errors import SimulationDivergedError
+
+    sim = Simulator("basket", {f"springs.{k}.ks": ks for k in ("structural", "shear", "bending")})
+    limit = sim.modes.imex_limit
+    assert limit > 1.5 * 2.0 / sim.modes.omega
+
+    def run(dt: float) -> None:
+        sim.reset()
+        rng = np.random.default_rng(0)
+        sim.state.x[:] += rng.normal(0.0, 0.01, sim.state.x.shape) * (sim.state.inv_mass > 0)[:, None]
+        sim.step(round(2.0 / dt), integrator="imex_euler", dt=dt)
+
+    run(0.95 * limit)
+    assert np.abs(sim.state.v).max() < 0.1
+    with pytest.raises(SimulationDivergedError):
+        run(1.15 * limit)

@@ -24,7 +24,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from netgym.physics.jit import kernel
+from netgym.physics.jit import inline_kernel, kernel
 
 from netgym.physics.forces import accelerations, spring_axis, spring_forces
 from netgym.physics.rows import add_pair_force, add_scaled
@@ -67,6 +67,22 @@ def step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplec
                 v[k, c] += dt * a[k, c]
 
 
+@inline_kernel
+def sweep_dampers(v, springs, coef, forward):
+    """One Gauss-Seidel pass of per-spring damper solves over the springs, in order if
+    ``forward`` else in reverse: spring s's closing speed c along its axis ``coef[s, :3]`` takes
+    ``-c coef[s, 3]`` from its first particle and gives ``c coef[s, 4]`` to its second."""
+    n_springs = springs.shape[0]
+    for t in range(n_springs):
+        s = t if forward else n_springs - 1 - t
+        i = springs[s, 0]
+        j = springs[s, 1]
+        ux, uy, uz = coef[s, 0], coef[s, 1], coef[s, 2]
+        closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
+        add_scaled(v, i, -(closing * coef[s, 3]), ux, uy, uz)
+        add_scaled(v, j, closing * coef[s, 4], ux, uy, uz)
+
+
 @kernel
 def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef):
     """Implicit-explicit Euler: v += dt (elastic + gravity) / m explicitly, then the dampers and
@@ -99,15 +115,8 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, co
             v[k, 0] = (v[k, 0] + dt * a[k, 0] * w) * keep
             v[k, 1] = (v[k, 1] + dt * a[k, 1] * w) * keep
             v[k, 2] = (v[k, 2] + dt * (a[k, 2] * w + gravity)) * keep
-    n_springs = springs.shape[0]
-    for sweep in range(2 * n_springs):
-        s = sweep if sweep < n_springs else 2 * n_springs - 1 - sweep
-        i = springs[s, 0]
-        j = springs[s, 1]
-        ux, uy, uz = coef[s, 0], coef[s, 1], coef[s, 2]
-        closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
-        add_scaled(v, i, -(closing * coef[s, 3]), ux, uy, uz)
-        add_scaled(v, j, closing * coef[s, 4], ux, uy, uz)
+    sweep_dampers(v, springs, coef, True)
+    sweep_dampers(v, springs, coef, False)
     for k in range(x.shape[0]):
         if inv_mass[k] > 0.0:
             add_scaled(x, k, dt, v[k, 0], v[k, 1], v[k, 2])
