@@ -80,7 +80,7 @@ def test_report_quick_covers_every_section() -> None:
         assert f"| {integrator} |" in out
     assert "NumPy vectorised" in out
     assert "| default | 2..N | all | 4 |" in out  # two 3-ball episodes against a fresh reference
-    assert "| default (IMEX Euler, 6 ms, to 0.1 m/s) |" in out
+    assert "| default (IMEX Euler, 11.5 ms, to 0.1 m/s) |" in out
 
 
 def test_variants_table_quick_prints_every_agent() -> None:
@@ -103,6 +103,9 @@ def test_episode_agreement_quick_compares_every_throw() -> None:
 def test_pause_accuracy_quick_measures_every_pause() -> None:
     from netgym.bench.pause_accuracy import PAUSES
 
+    from netgym.physics.simulator import Simulator
+
+    assert f"{Simulator('basket').settle_dt * 1e3:.1f} ms" in list(PAUSES)[0]  # the default's label says its step
     out = _run("scripts/pause_accuracy.py", "--quick")
     rows = [line.split("|") for line in out.splitlines() if line.startswith("| ") and "---" not in line][1:]
     assert [row[1].strip() for row in rows] == list(PAUSES)

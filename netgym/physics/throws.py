@@ -36,6 +36,7 @@ AWAKE_MARGIN = 0.5            # m the moving net may reach beyond its current bo
 TIME_EPSILON = 1e-9          # s: instants closer than this are the same
 AIR_PIECE = 0.1              # s: longest piece of a flight through air between two clearance checks
 MISS_FILMED_AFTER_LANDING = 0.5  # s of a missed ball's flight filmed after it first lands
+LINE_TIME_TOLERANCE = 1e-4    # s: a flown ball's line decision comes at most this late
 GOAL_FILMED = 0.5             # s of a goal (line rule) filmed after it is decided, the ball running into the net
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 
@@ -138,12 +139,14 @@ class Throw:
 
     def _survey(self, row: int, margin: float) -> tuple[float, np.ndarray, np.ndarray]:
         """``(others, lo, hi)``: the largest velocity component of every body but the ball in
-        ``row``, and the bounding box of the net, poles and other balls grown by the ball radius +
-        pole radius + ``margin``."""
+        ``row``, and the bounding box of the net particles, the poles' axes and the other balls'
+        centres, grown by the ball radius + the largest radius about those (a pole's, another
+        ball's) + ``margin``: outside it the ball is more than ``margin`` from everything."""
         m, s = self.sim.model, self.sim.state
         box = np.empty(6)
         others = survey(s.x, s.v, row, m.poles, box)
-        grow = m.ball_radius + float(m.poles[:, 6].max(initial=0.0)) + margin
+        about = max(float(m.poles[:, 6].max(initial=0.0)), m.ball_radius if self.sim.n_balls > 1 else 0.0)
+        grow = m.ball_radius + about + margin
         return others, box[:3] - grow, box[3:] + grow
 
     def _steps(self, ball: int) -> Plan:
@@ -204,26 +207,68 @@ class Throw:
         everything. Returns a decision reason, or None when the ball came close enough to need
         simulating."""
         sim = self.sim
-        s, n_net = sim.state, sim.model.n_net
+        s = sim.state
         _, lo, hi = self._survey(row, CLEARANCE)
+        parabola = sim.model.ball_drag == 0.0
+        if parabola:  # whether and when it comes into the box is one answer along the whole flight
+            entry = flight.entry_time(s.x[row], s.v[row], lo, hi, self.ground, deadline - s.time)
+            if entry is None:
+                return "flies_away"
+            if entry > 0.0:  # until then it is clear of everything and cannot cross the opening (inside the box)
+                yield from self._move(row, entry, through_opening=False)
+                if deadline - s.time < 0.5 * sim.dt:
+                    return "time_limit"
         while True:
-            if self._never_enters(row, lo, hi, deadline - s.time):
+            if not parabola and self._never_enters(row, lo, hi, deadline - s.time):
                 return "flies_away"
             gap = self._clearance(row)
             if gap <= CLEARANCE:
                 return None
             tau = min(self._safe_time(row, gap), deadline - s.time)
-            before = s.x[n_net:].copy()
-            start = s.x[row].copy(), s.v[row].copy(), s.time
-            if self.frames is not None:
-                yield from self._film_flight(row, *start, start[2] + tau)
-            s.x[row], s.v[row] = self._flight(start[0], start[1], tau)
-            stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
-            s.time = start[2] + tau
-            if sim.config.capture_rule == "line" and self._crossed_line(row, ball):
+            line = sim.config.capture_rule == "line"
+            if line:
+                tau = self._line_instant(row, ball, tau)
+            yield from self._move(row, tau, through_opening=True)
+            if line and self._crossed_line(row, ball):
                 return "crossed_line"
             if deadline - s.time < 0.5 * sim.dt:
                 return "time_limit"
+
+    def _move(self, row: int, tau: float, through_opening: bool) -> Plan:
+        """Fly the ball in ``row`` for ``tau`` (filmed if there are frames); if it may pass
+        ``through_opening``, book its entry along the chord (which stays within the ball of
+        radius ``gap`` about the start that the flight does)."""
+        sim = self.sim
+        s, n_net = sim.state, sim.model.n_net
+        before = s.x[n_net:].copy()
+        start = s.x[row].copy(), s.v[row].copy(), s.time
+        if self.frames is not None:
+            yield from self._film_flight(row, *start, start[2] + tau)
+        s.x[row], s.v[row] = self._flight(start[0], start[1], tau)
+        if through_opening:
+            stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
+        s.time = start[2] + tau
+
+    def _line_instant(self, row: int, ball: int, tau: float) -> float:
+        """``tau``, or, if the ball in ``row`` flying for ``tau`` ends wholly over the line, the
+        first instant it is (within LINE_TIME_TOLERANCE after it): the line rule's decision."""
+        sim = self.sim
+        s, n_net = sim.state, sim.model.n_net
+        start, before = (s.x[row].copy(), s.v[row].copy()), s.x[n_net:].copy()
+
+        def over(t: float) -> bool:
+            x, entered = s.x.copy(), s.entered.copy()
+            x[row] = self._flight(*start, t)[0]
+            stepping.update_entered(x, before, n_net, entered, sim.kernel_model.opening)
+            return bool(entered[ball]) and sim.opening.depth(x[row]) >= sim.model.ball_radius
+
+        if not over(tau):
+            return tau
+        lo, hi = 0.0, tau
+        while hi - lo > LINE_TIME_TOLERANCE:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if over(mid) else (mid, hi)
+        return hi
 
     def _flight(self, x: np.ndarray, v: np.ndarray, tau: float) -> tuple[np.ndarray, np.ndarray]:
         """Where a lone ball starting at ``x``, ``v`` is after ``tau``: closed form without air,
