@@ -180,7 +180,10 @@ def to_markdown(report: Report) -> str:
         "Largest dt at which 1 s of the net (perturbed by 1 cm noise from rest, no ball) stays below the "
         "divergence speed, by bisection on a log scale between 0.01 ms and 50 ms, beside the linear estimate "
         "(spectral radius of each method's step on the net's fastest mode, found by power iteration; for "
-        "imex_euler, whose dampers are implicit, the estimate counts the elastic forces alone).",
+        "imex_euler, whose dampers are a Gauss-Seidel sweep rather than a force, the linearised step on the whole "
+        "net, its sweep included: stable while lambda_max(h^2 F K F^T - 2 F F^T + 2 I) < 2 + 2 / keep, F the "
+        "forward damper pass; `netgym/physics/stability.py`). The pause between throws steps at 90% of its "
+        "integrator's estimate.",
         "",
         "| scene | integrator | bisection | linear estimate |",
         "|---|---|---:|---:|",
@@ -214,7 +217,7 @@ def to_markdown(report: Report) -> str:
 EPISODES_TEXT = ("What training pays: whole 3-ball episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py` "
                  "has more rows). With the oracle every ball is caught, so after every throw but an episode's last "
                  "the loaded net settles (dynamic relaxation, the net kinetically damped, IMEX Euler at "
-                 "`simulation.settle_dt`, 6 ms on the basket) until nothing has moved faster than "
+                 "`simulation.settle_dt`, 11.5 ms on the basket: 90% of its stability limit there) until nothing has moved faster than "
                  "`simulation.settle_speed` (0.1 m/s) over the last 0.1 s; `info['settle_substeps']` books that pause "
                  "in the step that caused it and `info['substeps']` all the work of a step.")
 AGREEMENT_TEXT = (
@@ -224,7 +227,7 @@ AGREEMENT_TEXT = (
     "than 1 mm/s. Throws 2..N meet the net and the balls as each pipeline left them, so they test the pause and the "
     "fast path together. `python scripts/episode_agreement.py` (the reference is stored in "
     "`docs/figures/episode_reference.json`; `--candidate FIELD=VALUE` compares other settings against it). The "
-    "second pipeline pauses at the scene's own 2 ms step instead of `simulation.settle_dt` (6 ms).")
+    "second pipeline pauses at the scene's own 2 ms step instead of `simulation.settle_dt` (11.5 ms).")
 STATIC_PAUSE_TEXT = (
     "- Tried, not adopted: the pause as a static equilibrium solve (branch `experiment/static-pause`): minimise "
     "spring + gravity energy with penalty contacts by damped Newton (Levenberg-Marquardt, the springs' Hessian "
@@ -243,8 +246,8 @@ PAUSE_ACCURACY_TEXT = (
     "within a minute).")
 PAUSE_TEXT = (
     "- The pause between throws at a larger step, in one kernel: dynamic relaxation with IMEX Euler at "
-    "`simulation.settle_dt` (6 ms on the basket, within 90% of the linear stability limit; the scene's own "
-    "integrator and dt if it diverges), the net kinetically damped after every step and a sliding 0.1 s rest "
+    "`simulation.settle_dt` (at first 6 ms on the basket, 90% of the linear stability limit as it was then "
+    "estimated; the scene's own integrator and dt if it diverges), the net kinetically damped after every step and a sliding 0.1 s rest "
     "window, in one numba call instead of a Python loop over 10 ms chunks. On the episodes of section 8, one run: "
     "64.2 throws/s against 55.0 for the same kernel at the scene's 2 ms, the same outcomes. Damping the balls "
     "too made this pause 2-3x faster (basket oracle 3-ball episodes 119-185 throws/s, 10-ball 61-82, goal "
