@@ -3,6 +3,7 @@ each failure is a ValueError that names the argument."""
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 import numpy as np
@@ -33,3 +34,16 @@ def vector_argument(value: Any, name: str) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got {arr.tolist()}")
     return arr
+
+
+def parse_overrides(text: str) -> dict[str, Any]:
+    """``"a.b=1,c.d=x"`` (a command line's scene overrides) as a dict, values read as JSON where
+    they parse and kept as strings where not."""
+    out: dict[str, Any] = {}
+    for item in text.split(","):
+        key, _, value = item.partition("=")
+        try:
+            out[key] = json.loads(value)
+        except json.JSONDecodeError:
+            out[key] = value
+    return out

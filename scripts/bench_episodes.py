@@ -6,12 +6,14 @@ Usage::
 
     python scripts/bench_episodes.py               # 60 episodes per row
     python scripts/bench_episodes.py --quick       # 2 episodes per row, for CI smoke tests
+    python scripts/bench_episodes.py --candidate simulation.settle_dt=0.006   # each row also so, in the same run
 """
 
 from __future__ import annotations
 
 import argparse
 
+from netgym.arguments import parse_overrides
 from netgym.bench.episodes import run_episodes, to_markdown
 
 ROWS = (("basket", "oracle", 3), ("basket", "random", 3), ("basket", "oracle", 10), ("goal", "oracle", 3),
@@ -23,12 +25,16 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="2 episodes per row, for smoke tests")
     parser.add_argument("--episodes", type=int, default=60)
+    parser.add_argument("--candidate", action="append", default=[], metavar="FIELD=VALUE[,FIELD=VALUE]",
+                        help="scene overrides to run every row with too, right after the default (repeatable)")
     args = parser.parse_args()
     episodes = 2 if args.quick else args.episodes
+    settings = [None, *(parse_overrides(text) for text in args.candidate)]
     rows = []
     for k, (scene, policy, balls) in enumerate(ROWS):
         print(f"[{k + 1}/{len(ROWS)}] {scene}, {policy}, {balls}-ball episodes ...", flush=True)
-        rows.append(run_episodes(scene, policy, max(1, episodes * 3 // balls), balls))
+        for overrides in settings:
+            rows.append(run_episodes(scene, policy, max(1, episodes * 3 // balls), balls, overrides=overrides))
     print(to_markdown(rows))
 
 

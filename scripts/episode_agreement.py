@@ -17,24 +17,12 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import json
 from pathlib import Path
 
+from netgym.arguments import parse_overrides
 from netgym.bench.episode_agreement import agreement_table, load, reference, save
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def _overrides(text: str) -> dict:
-    """``"a.b=1,c.d=x"`` as a dict of overrides (values read as JSON where they parse)."""
-    out = {}
-    for item in text.split(","):
-        key, _, value = item.partition("=")
-        try:
-            out[key] = json.loads(value)
-        except json.JSONDecodeError:
-            out[key] = value
-    return out
 
 
 def main() -> None:
@@ -58,7 +46,7 @@ def main() -> None:
         scene = args.scene
         reference_episodes = reference(scene, args.episodes, args.balls, workers=args.workers)
         save(reference_episodes, args.reference, scene)
-    candidates = [("default", {}), *((label, _overrides(label)) for label in args.candidate)]
+    candidates = [("default", {}), *((label, parse_overrides(label)) for label in args.candidate)]
     print(agreement_table(scene, reference_episodes, candidates, args.workers))
 
 

@@ -71,6 +71,13 @@ def test_scene_file_that_is_not_text_gets_a_config_error(tmp_path) -> None:
         load_scene(path)
 
 
+def test_command_line_overrides_are_read_as_json_where_they_parse() -> None:
+    from netgym.arguments import parse_overrides
+
+    assert parse_overrides("simulation.dt=0.001,capture_rule=line,simulation.cg_max_iterations=50") == {
+        "simulation.dt": 0.001, "capture_rule": "line", "simulation.cg_max_iterations": 50}
+
+
 def test_numpy_numbers_are_accepted_in_overrides() -> None:
     cfg = load_scene("basket", {"simulation.time_limit": np.float32(4.0), "simulation.cg_max_iterations": np.int64(50)})
     assert cfg.simulation.time_limit == 4.0 and cfg.simulation.cg_max_iterations == 50

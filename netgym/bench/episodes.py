@@ -17,7 +17,7 @@ from netgym.envs import NetCatchEnv
 class EpisodeFigures:
     """Figures of ``throws`` steps of one policy on one scene."""
 
-    scene: str
+    scene: str                                    # with the overrides, if any
     policy: str
     balls: int
     throws: int
@@ -28,10 +28,12 @@ class EpisodeFigures:
     settle_share: float                           # settling substeps / all substeps
 
 
-def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int = 0) -> EpisodeFigures:
+def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int = 0,
+                 overrides: dict | None = None) -> EpisodeFigures:
     """Time every step of ``episodes`` seeded episodes of ``balls`` throws (``policy``: ``"oracle"``
-    or ``"random"``), after one warm-up episode that compiles the kernels."""
-    env = NetCatchEnv(scene=scene, balls_per_episode=balls)
+    or ``"random"``) in ``scene`` with ``overrides``, after one warm-up episode that compiles the
+    kernels."""
+    env = NetCatchEnv(scene=scene, balls_per_episode=balls, overrides=overrides)
     oracle = ballistic_oracle(scene)
     rng = np.random.default_rng(seed)
     steps, settle, total, caught = [], [], [], 0.0
@@ -48,7 +50,8 @@ def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int =
                 total.append(info["substeps"])
                 caught += float(info["captured"])
     ms = 1e3 * np.array(steps)
-    return EpisodeFigures(scene, policy, balls, len(steps), caught / len(steps), len(steps) / float(np.sum(steps)),
+    label = scene if not overrides else f"{scene} ({', '.join(f'{k}={v}' for k, v in overrides.items())})"
+    return EpisodeFigures(label, policy, balls, len(steps), caught / len(steps), len(steps) / float(np.sum(steps)),
                           (float(np.median(ms)), float(np.percentile(ms, 99)), float(ms.max())),
                           (float(np.median(settle)), float(np.percentile(settle, 90)), float(max(settle))),
                           float(np.sum(settle)) / max(float(np.sum(total)), 1.0))

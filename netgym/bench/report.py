@@ -120,6 +120,8 @@ def _gains(report: Report) -> list[str]:
         ERROR_MODEL_TEXT,
         NOTHING_TO_SETTLE_TEXT,
         PAUSE_TEXT,
+        STEP_LIMIT_TEXT,
+        FLIGHT_TEXT,
         NATIVE_VECTOR_ENV_TEXT,
         STATIC_PAUSE_TEXT,
     ]
@@ -254,6 +256,21 @@ PAUSE_TEXT = (
     "18-28, in runs minutes apart) and left piles of balls still collapsing (section 9); not adopted. Tried "
     "earlier with the Python loop (every body damped, checked every 10 ms), a 3.7 ms pause settled more "
     "slowly than the 2 ms one (29 -> 21 throws/s).")
+STEP_LIMIT_TEXT = (
+    "- The pause at the stability limit IMEX Euler really has: its linearised step on the net, damper sweep "
+    "included, is stable while lambda_max(h^2 F K F^T - 2 F F^T + 2 I) < 2 + 2 / keep (section 3): 12.8 ms on the "
+    "basket, where the elastic forces alone gave 7.44 ms (bisection: 14 ms). The pause steps at 90% of it, 11.5 ms "
+    "instead of 6 ms (the goal 3.9 instead of 1.8 ms). Oracle episodes on the basket, both steps alternating twice "
+    "in one process (`scripts/bench_episodes.py --candidate simulation.settle_dt=0.006` runs the same comparison): "
+    "3 balls 102.0-106.6 -> 134.2-183.7 throws/s, step p99 24.2-25.5 -> 11.6-14.0 ms, settling substeps p50 80 -> "
+    "46.5; 10 balls 54.7-79.1 -> 78.1-94.8 throws/s. Outcomes unchanged (section 8); the balls of piles come to "
+    "rest farther from where a fine relaxation puts them (section 9).")
+FLIGHT_TEXT = (
+    "- A flight computed once where it can be: whether and when a parabola (with its bounces) comes into the "
+    "box around everything is one answer along the whole flight, so the ball is flown there in one piece and "
+    "conservative steps start only inside (flight checks per basket oracle throw p50 15 -> 10, Python time of "
+    "the flight 1.3 -> 0.45 ms per throw, profiled minutes apart). The line rule's instant is found along the "
+    "flight to 0.1 ms, where it was the end of a flight step of up to tens of centimetres.")
 ERROR_MODEL_TEXT = (
     "- Every kernel compiled with numpy's floating-point error model (`netgym.physics.jit`): numba then puts no "
     "zero check before each division. Bitwise the same results (the golden episodes); on the basket, one run: "
