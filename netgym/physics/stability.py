@@ -21,6 +21,7 @@ is stable while ``2 G^-1 + 2 I - h^2 K`` is positive definite, i.e. (congruence 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +32,7 @@ from netgym.physics.kinds import Integrator
 IMEX_SEARCH_GROWTH = 1.5     # the IMEX limit is bracketed by steps growing by this factor ...
 IMEX_SEARCH_HALVINGS = 8     # ... then bisected this often (to 0.2%)
 IMEX_SEARCH_HORIZON = 1.0    # s; larger steps are not sought
+IMEX_TOLERANCE = 1e-6        # relative change of the largest eigenvalue at which its power iterations stop
 
 
 @dataclass(frozen=True)
@@ -55,8 +57,12 @@ def _scatter(n: int, springs: np.ndarray, pair_force: np.ndarray) -> np.ndarray:
     return out
 
 
-def _power_iteration(product, start: np.ndarray, iterations: int) -> tuple[float, np.ndarray]:
-    """Largest eigenvalue of a symmetric positive semi-definite ``product`` and its vector."""
+def _power_iteration(product, start: np.ndarray, iterations: int, above: float = math.inf,
+                     tolerance: float = 0.0) -> tuple[float, np.ndarray]:
+    """Largest eigenvalue of a symmetric positive semi-definite ``product`` and its vector, by at
+    most ``iterations`` power iterations. Their Rayleigh quotients only grow towards it, so they
+    stop once one reaches ``above`` (the eigenvalue is at least that) or changes by less than
+    ``tolerance`` relative."""
     y, value = start, 0.0
     for _ in range(iterations):
         norm = np.linalg.norm(y)
@@ -64,8 +70,10 @@ def _power_iteration(product, start: np.ndarray, iterations: int) -> tuple[float
             return 0.0, y  # the operator is zero (for example no damping at all)
         y = y / norm
         z = product(y)
-        value = float(np.sum(y * z))
+        value, last = float(np.sum(y * z)), value
         y = z
+        if value >= above or abs(value - last) <= tolerance * value:
+            break
     return value, y
 
 
@@ -130,8 +138,9 @@ def imex_limit(stiffness, omega2: float, inv_mass: np.ndarray, springs: np.ndarr
             back = sweep(y, False)
             return h * h * sweep(stiffness(back), True) - 2.0 * sweep(back, True) + 2.0 * y
 
-        value, vector[0] = _power_iteration(product, vector[0], iterations)
-        return value < 2.0 + 2.0 * (1.0 + h * drag)
+        bound = 2.0 + 2.0 * (1.0 + h * drag)
+        value, vector[0] = _power_iteration(product, vector[0], iterations, above=bound, tolerance=IMEX_TOLERANCE)
+        return value < bound
 
     lo = 2.0 / np.sqrt(omega2)  # the elastic limit: stable whatever the dampers do
     while stable(lo * IMEX_SEARCH_GROWTH):
