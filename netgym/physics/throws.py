@@ -236,8 +236,8 @@ class Throw:
 
     def _move(self, row: int, tau: float, through_opening: bool) -> Plan:
         """Fly the ball in ``row`` for ``tau`` (filmed if there are frames); if it may pass
-        ``through_opening``, book its entry along the chord (which stays within the ball of
-        radius ``gap`` about the start that the flight does)."""
+        ``through_opening``, book its crossing along the chord of the flight (a conservative
+        step's chord stays, like its arc, within the clearance about its start)."""
         sim = self.sim
         s, n_net = sim.state, sim.model.n_net
         before = s.x[n_net:].copy()
