@@ -248,6 +248,8 @@ class Throw:
         if through_opening:
             stepping.update_entered(s.x, before, n_net, s.entered, sim.kernel_model.opening)
         s.time = start[2] + tau
+        if self.frames is not None:
+            yield Tick()  # an instant within half a step after the flight's end: here is its nearest substep
 
     def _line_instant(self, row: int, ball: int, tau: float) -> float:
         """``tau``, or, if the ball in ``row`` flying for ``tau`` ends wholly over the line, the
