@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.physics.integrators import sweep_dampers
+from netgym.physics.jit import kernel
 from netgym.physics.kinds import Integrator
 
 IMEX_SEARCH_GROWTH = 1.5     # the IMEX limit is bracketed by steps growing by this factor ...
@@ -55,6 +56,30 @@ def _scatter(n: int, springs: np.ndarray, pair_force: np.ndarray) -> np.ndarray:
         out[:, c] = (np.bincount(springs[:, 0], pair_force[:, c], n)
                      - np.bincount(springs[:, 1], pair_force[:, c], n))
     return out
+
+
+@kernel
+def _stiffness_product(y, springs, axes, tension, ks, scale, out):
+    """``out = M^-1/2 K M^-1/2 y``: each spring's stiffness ``ks`` along its axis, and
+    ``ks * tension`` (its tension per unit length over ks) across it."""
+    out[:] = 0.0
+    for s in range(springs.shape[0]):
+        i = springs[s, 0]
+        j = springs[s, 1]
+        dx = y[i, 0] * scale[i] - y[j, 0] * scale[j]
+        dy = y[i, 1] * scale[i] - y[j, 1] * scale[j]
+        dz = y[i, 2] * scale[i] - y[j, 2] * scale[j]
+        ux, uy, uz = axes[s, 0], axes[s, 1], axes[s, 2]
+        along = (1.0 - tension[s]) * (dx * ux + dy * uy + dz * uz)
+        fx = ks[s] * (tension[s] * dx + along * ux)
+        fy = ks[s] * (tension[s] * dy + along * uy)
+        fz = ks[s] * (tension[s] * dz + along * uz)
+        out[i, 0] += fx * scale[i]
+        out[i, 1] += fy * scale[i]
+        out[i, 2] += fz * scale[i]
+        out[j, 0] -= fx * scale[j]
+        out[j, 1] -= fy * scale[j]
+        out[j, 2] -= fz * scale[j]
 
 
 def _power_iteration(product, start: np.ndarray, iterations: int, above: float = math.inf,
@@ -91,11 +116,9 @@ def net_modes(positions: np.ndarray, inv_mass: np.ndarray, springs: np.ndarray, 
     free = inv_mass > 0.0
 
     def stiffness(y: np.ndarray) -> np.ndarray:
-        ys = y * scale[:, None]
-        diff = ys[springs[:, 0]] - ys[springs[:, 1]]
-        along = np.sum(diff * u, axis=1)
-        pair = ks[:, None] * (tension[:, None] * diff + ((1.0 - tension) * along)[:, None] * u)
-        return _scatter(n, springs, pair) * scale[:, None]
+        out = np.empty_like(y)
+        _stiffness_product(np.ascontiguousarray(y), springs, u, tension, ks, scale, out)
+        return out
 
     def damping(y: np.ndarray) -> np.ndarray:
         ys = y * scale[:, None]
