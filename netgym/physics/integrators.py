@@ -68,6 +68,15 @@ def step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplec
 
 
 @inline_kernel
+def damper_share(dt, kd, w_i, w_j):
+    """What one pass of the symmetric damper sweep (over ``dt / 2``, backward Euler along the
+    spring) takes of a spring's closing speed, per unit inverse mass of each end; scalars in the
+    kernels, arrays from the stability estimate."""
+    hk = 0.5 * dt * kd
+    return hk / (1.0 + hk * (w_i + w_j))
+
+
+@inline_kernel
 def sweep_dampers(v, springs, coef, forward):
     """One Gauss-Seidel pass of per-spring damper solves over the springs, in order if
     ``forward`` else in reverse: spring s's closing speed c along its axis ``coef[s, :3]`` takes
@@ -97,15 +106,13 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, co
     """
     a = work[0]
     a[:] = 0.0
-    half = 0.5 * dt
     for s in range(springs.shape[0]):
         i = springs[s, 0]
         j = springs[s, 1]
         length, ux, uy, uz = spring_axis(x, i, j)
         mag = -params[s, 1] * (length - params[s, 0])
         add_pair_force(a, i, j, mag * ux, mag * uy, mag * uz)
-        hk = half * params[s, 2]
-        share = hk / (1.0 + hk * (inv_mass[i] + inv_mass[j]))
+        share = damper_share(dt, params[s, 2], inv_mass[i], inv_mass[j])
         coef[s, 0], coef[s, 1], coef[s, 2] = ux, uy, uz
         coef[s, 3], coef[s, 4] = share * inv_mass[i], share * inv_mass[j]
     keep = 1.0 / (1.0 + dt * drag)

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from netgym.physics.integrators import sweep_dampers
+from netgym.physics.integrators import damper_share, sweep_dampers
 from netgym.physics.jit import kernel
 from netgym.physics.kinds import Integrator
 
@@ -148,8 +148,7 @@ def imex_limit(stiffness, omega2: float, inv_mass: np.ndarray, springs: np.ndarr
     vector = [start]
 
     def stable(h: float) -> bool:
-        half = 0.5 * h * kd  # each pass of the symmetric sweep spans dt / 2
-        share = half / (1.0 + half * (w_i + w_j))
+        share = damper_share(h, kd, w_i, w_j)
         coef[:, 3], coef[:, 4] = share * w_i, share * w_j
 
         def sweep(y: np.ndarray, forward: bool) -> np.ndarray:

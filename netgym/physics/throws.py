@@ -210,6 +210,7 @@ class Throw:
         s = sim.state
         _, lo, hi = self._survey(row, CLEARANCE)
         parabola = sim.model.ball_drag == 0.0
+        line = sim.config.capture_rule == "line"
         if parabola:  # whether and when it comes into the box is one answer along the whole flight
             entry = flight.entry_time(s.x[row], s.v[row], lo, hi, self.ground, deadline - s.time)
             if entry is None:
@@ -225,7 +226,6 @@ class Throw:
             if gap <= CLEARANCE:
                 return None
             tau = min(self._safe_time(row, gap), deadline - s.time)
-            line = sim.config.capture_rule == "line"
             if line:
                 tau = self._line_instant(row, ball, tau)
             yield from self._move(row, tau, through_opening=True)
