@@ -34,15 +34,17 @@ def _finite_and_below(v, limit):
 
 
 @kernel
-def _closing_speed(x, v, n_net, radius, dt):
+def _closing_speed(x, v, n_net, radius, dt, speeds):
     """Largest speed of a ball plus that of any net particle that could reach it within dt:
-    the relative speed the substeps must resolve."""
+    the relative speed the substeps must resolve (``speeds``: scratch for the net's speeds)."""
+    for k in range(n_net):
+        speeds[k] = math.sqrt(v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
     worst = 0.0
     for b in range(n_net, x.shape[0]):
         ball = math.sqrt(v[b, 0] ** 2 + v[b, 1] ** 2 + v[b, 2] ** 2)
         near = 0.0
         for k in range(n_net):
-            speed = math.sqrt(v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
+            speed = speeds[k]
             reach = radius + (ball + speed) * dt
             if (abs(x[k, 0] - x[b, 0]) < reach and abs(x[k, 1] - x[b, 1]) < reach
                     and abs(x[k, 2] - x[b, 2]) < reach):
@@ -103,7 +105,7 @@ def update_entered(x, before, n_net, entered, opening):
 
 
 @kernel
-def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box):
+def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast; the
     only kernel that unpacks a :class:`~netgym.physics.model.KernelModel` and its
     :class:`~netgym.physics.model.Settings` for the passes of a step."""
@@ -116,7 +118,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, bo
     n_balls = x.shape[0] - n_net
     substeps = 1
     if n_balls > 0:
-        closing = _closing_speed(x, v, n_net, radius, dt)
+        closing = _closing_speed(x, v, n_net, radius, dt, speeds)
         substeps = max(1, int(math.ceil(closing * dt / (settings.max_travel * radius))))
     h = dt / substeps
     for _sub in range(substeps):
@@ -166,10 +168,11 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     """
     before_v = np.empty((x.shape[0] - model.n_net, 3))
     box = np.empty(6)
+    speeds = np.empty(model.n_net)
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
@@ -200,12 +203,13 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
     window = history.shape[0]
     before_v = np.empty((x.shape[0] - model.n_net, 3))
     box = np.empty(6)
+    speeds = np.empty(model.n_net)
     memory[2] = 0.0
     memory[3] = 0.0
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds)
         memory[2] = i + 1
         if damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
