@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -82,13 +83,16 @@ def errors(result: PauseResult, reference: PauseResult) -> tuple[float, float]:
     return ball, net
 
 
-def pause_accuracy(nets: int, seed: int = 0, progress: bool = True) -> list[dict]:
+def pause_accuracy(nets: int, seed: int = 0, progress: bool = True,
+                   candidates: Sequence[Mapping[str, Any]] = ()) -> list[dict]:
     """Per loaded net: the ball count and, per pause of PAUSES, its errors from the reference
     and its wall and simulated seconds (``"pauses"`` is ``None`` where the reference did not come
-    to rest, a pause's entry ``None`` where that pause did not)."""
+    to rest, a pause's entry ``None`` where that pause did not). Each of ``candidates`` (scene
+    overrides) adds the default pause of a basket with them, from the same loaded nets."""
     sim = Simulator("basket")
     loaded_net(sim, seed)
     pause(sim)  # compile the kernels outside the timed pauses
+    others = {candidate_label(c): Simulator("basket", c) for c in candidates}
     rows = []
     for k in tqdm(range(nets), desc="loaded nets", unit="net", disable=not progress):
         row: dict[str, Any] = {"balls": loaded_net(sim, seed + k), "pauses": None}
@@ -99,10 +103,13 @@ def pause_accuracy(nets: int, seed: int = 0, progress: bool = True) -> list[dict
         except NetNotAtRestError:  # did not come to rest within max_time: the net is left out
             continue
         row["pauses"] = {}
-        for label, relaxation in PAUSES.items():
-            sim.restore(start)
+        runs = [(label, sim, relaxation) for label, relaxation in PAUSES.items()]
+        for label, other in others.items():
+            runs.append((label, other, {}))
+        for label, simulator, relaxation in runs:
+            simulator.restore(start)
             try:
-                result = pause(sim, **relaxation)
+                result = pause(simulator, **relaxation)
             except NetNotAtRestError:
                 row["pauses"][label] = None
                 continue
@@ -110,6 +117,11 @@ def pause_accuracy(nets: int, seed: int = 0, progress: bool = True) -> list[dict
             row["pauses"][label] = {"ball": ball, "net": net, "wall": result.wall_seconds,
                                     "simulated": result.simulated_seconds, "drift": result.drift}
     return rows
+
+
+def candidate_label(overrides: Mapping[str, Any]) -> str:
+    """The row label of the default pause with ``overrides``."""
+    return "default with " + ", ".join(f"{k}={v}" for k, v in overrides.items())
 
 
 def to_markdown(rows: list[dict]) -> str:
@@ -122,7 +134,8 @@ def to_markdown(rows: list[dict]) -> str:
              "net RMS error p50 / p90 / max (mm) | net within 2 mm | ball drift in the next second p50 / p90 / max (mm) | "
              "wall ms p50 / p99 / max | simulated s p50 |",
              "|---|---:|---:|---|---:|---|---:|---|---|---:|"]
-    for label in PAUSES:
+    labels = list(settled[0]) if settled else list(PAUSES)
+    for label in labels:
         done = [p[label] for p in settled if p[label] is not None]
         if not done:
             lines.append(f"| {label} | 0 | {len(settled)} | - | - | - | - | - | - | - |")
