@@ -103,15 +103,20 @@ def test_episode_agreement_quick_compares_every_throw() -> None:
     assert "Reference: 2 basket episodes of 3 throws" in out
 
 
-def test_pause_accuracy_quick_measures_every_pause() -> None:
+def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same_nets() -> None:
     from netgym.bench.pause_accuracy import PAUSES
 
     from netgym.physics.simulator import Simulator
 
     assert f"{Simulator('basket').settle_dt * 1e3:.1f} ms" in list(PAUSES)[0]  # the default's label says its step
-    out = _run("scripts/pause_accuracy.py", "--quick")
+    out = _run("scripts/pause_accuracy.py", "--quick", "--candidate", "simulation.settle_dt=0.006")
     rows = [line.split("|") for line in out.splitlines() if line.startswith("| ") and "---" not in line][1:]
-    assert [row[1].strip() for row in rows] == list(PAUSES)
+    candidate = "default with simulation.settle_dt=0.006"
+    assert [row[1].strip() for row in rows] == [*PAUSES, candidate]
+    by_label = {row[1].strip(): row for row in rows}
+    # the candidate's default pause is the 6 ms pause, from the same loaded nets: the same errors
+    columns = (2, 3, 4, 6)  # nets at rest, not at rest, ball errors, net errors
+    assert [by_label[candidate][k] for k in columns] == [by_label["6 ms steps, to 0.1 m/s"][k] for k in columns]
     left_out = int(out.split(" of 2 loaded nets")[0])
     for row in rows:
         assert int(row[2]) + int(row[3]) + left_out == 2  # every net measured, not at rest, or left out
