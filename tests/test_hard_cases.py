@@ -170,3 +170,25 @@ def test_low_ks_high_kd_runs_or_raises_the_named_error(integrator: str, dt: floa
     else:
         assert np.all(np.isfinite(sim.state.x)) and np.all(np.isfinite(sim.state.v))
         assert integrator == "implicit_euler" or dt <= sim.stable_dt
+
+
+def test_the_substep_count_is_the_closing_speed_rule_whatever_the_shortcut() -> None:
+    """Substeps keep every ball within ``max_ball_travel`` radii of travel relative to the net
+    particles that could reach it; when the fastest ball and the fastest particle together stay
+    within one substep, that bound answers without the search for near particles. On random
+    states, from slow to fast, the count is the rule's own."""
+    import math
+
+    from netgym.physics import stepping
+
+    sim = Simulator("basket")
+    m, rng = sim.model, np.random.default_rng(5)
+    dt, travel = sim.dt, sim.config.simulation.max_ball_travel * m.ball_radius
+    for scale in (0.01, 0.1, 1.0, 10.0, 40.0):
+        for _ in range(20):
+            x = np.vstack([sim.state.x, rng.uniform([-1.0, -1.0, 0.5], [1.0, 1.0, 3.0], (3, 3))])
+            v = rng.normal(0.0, scale, x.shape)
+            speeds = np.empty(m.n_net)
+            rule = max(1, int(math.ceil(stepping._closing_speed(x, v, m.n_net, m.ball_radius, dt, speeds)
+                                        * dt / travel)))
+            assert stepping._substeps(x, v, m.n_net, m.ball_radius, dt, travel, speeds) == rule
