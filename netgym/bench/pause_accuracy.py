@@ -15,8 +15,8 @@ friction makes where balls come to rest depend on the path there.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
