@@ -4,6 +4,7 @@ each failure is a ValueError that names the argument."""
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -47,3 +48,8 @@ def parse_overrides(text: str) -> dict[str, Any]:
         except json.JSONDecodeError:
             out[key] = value
     return out
+
+
+def describe_overrides(overrides: Mapping[str, Any]) -> str:
+    """Scene overrides as a label: ``"a.b=1, c.d=x"``."""
+    return ", ".join(f"{k}={v}" for k, v in overrides.items())

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from netgym.arguments import describe_overrides
 from netgym.bench.throws import ballistic_oracle
 from netgym.envs import NetCatchEnv
 
@@ -50,7 +51,7 @@ def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int =
                 total.append(info["substeps"])
                 caught += float(info["captured"])
     ms = 1e3 * np.array(steps)
-    label = scene if not overrides else f"{scene} ({', '.join(f'{k}={v}' for k, v in overrides.items())})"
+    label = f"{scene} ({describe_overrides(overrides)})" if overrides else scene
     return EpisodeFigures(label, policy, balls, len(steps), caught / len(steps), len(steps) / float(np.sum(steps)),
                           (float(np.median(ms)), float(np.percentile(ms, 99)), float(ms.max())),
                           (float(np.median(settle)), float(np.percentile(settle, 90)), float(max(settle))),

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 from tqdm import tqdm
 
+from netgym.arguments import describe_overrides
 from netgym.errors import NetNotAtRestError
 from netgym.physics.simulator import Simulator
 
@@ -92,7 +93,8 @@ def pause_accuracy(nets: int, seed: int = 0, progress: bool = True,
     sim = Simulator("basket")
     loaded_net(sim, seed)
     pause(sim)  # compile the kernels outside the timed pauses
-    others = {candidate_label(c): Simulator("basket", c) for c in candidates}
+    runs = [(label, sim, relaxation) for label, relaxation in PAUSES.items()]
+    runs += [(candidate_label(c), Simulator("basket", c), {}) for c in candidates]
     rows = []
     for k in tqdm(range(nets), desc="loaded nets", unit="net", disable=not progress):
         row: dict[str, Any] = {"balls": loaded_net(sim, seed + k), "pauses": None}
@@ -103,9 +105,6 @@ def pause_accuracy(nets: int, seed: int = 0, progress: bool = True,
         except NetNotAtRestError:  # did not come to rest within max_time: the net is left out
             continue
         row["pauses"] = {}
-        runs = [(label, sim, relaxation) for label, relaxation in PAUSES.items()]
-        for label, other in others.items():
-            runs.append((label, other, {}))
         for label, simulator, relaxation in runs:
             simulator.restore(start)
             try:
@@ -121,7 +120,7 @@ def pause_accuracy(nets: int, seed: int = 0, progress: bool = True,
 
 def candidate_label(overrides: Mapping[str, Any]) -> str:
     """The row label of the default pause with ``overrides``."""
-    return "default with " + ", ".join(f"{k}={v}" for k, v in overrides.items())
+    return "default with " + describe_overrides(overrides)
 
 
 def to_markdown(rows: list[dict]) -> str:
