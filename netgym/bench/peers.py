@@ -80,8 +80,9 @@ def mujoco_peer(dt: float, seconds: float) -> tuple[float, np.ndarray] | None:
     return rate, x
 
 
-def peers(quick: bool) -> list[dict]:
-    """netgym and the NumPy peer on the same released net at the same dt, same reference."""
+def peers(quick: bool, reference_setting: tuple[str, float] = REFERENCE) -> list[dict]:
+    """netgym and the NumPy peer on the same released net at the same dt, against the same
+    reference (integrator, dt)."""
     seconds = 0.05 if quick else 0.2
     dt = PEER_SETTING[1]
 
@@ -94,7 +95,7 @@ def peers(quick: bool) -> list[dict]:
         sim.step(round(seconds / step))
         return round(seconds / step) / (time.perf_counter() - start), sim.state.x.copy()
 
-    _, reference = released(*REFERENCE)
+    _, reference = released(*reference_setting)
     ours_rate, ours = released(*PEER_SETTING)
     peer_rate, peer = numpy_peer(dt, seconds)
 

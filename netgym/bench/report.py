@@ -16,7 +16,7 @@ from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import CASES, compare, summarise
 from netgym.bench.outcomes import outcome_accuracy
 from netgym.bench.peers import peers
-from netgym.bench.settings import DEFAULT, PEER_SETTING, REFERENCE
+from netgym.bench.settings import DEFAULT, PEER_SETTING, QUICK_REFERENCE, REFERENCE
 from netgym.bench.stability_limits import stability_limits
 from netgym.bench.throws import sample_throws
 from netgym.bench.work_precision import SAMPLE, STRIKE, STRIKE_SECONDS, work_precision
@@ -27,6 +27,7 @@ class Report:
     """The figures of every section, from one run."""
 
     count: int                              # throws of the outcome-accuracy section
+    reference: tuple[str, float]            # (integrator, dt) of the work-precision reference
     work_precision: list[dict]
     outcomes: list[dict]
     stability: list[dict]
@@ -55,11 +56,12 @@ def measure(quick: bool, count: int, reference: Path | None = None) -> Report:
     """Run every section (small sweeps and few throws with ``quick``); ``count`` throws for the
     outcome-accuracy section; ``reference``: the stored reference episodes of section 8. A
     progress bar on stderr counts the sections."""
+    reference_setting = QUICK_REFERENCE if quick else REFERENCE
     sections = {
-        "work-precision": lambda: work_precision(quick)[0],
+        "work-precision": lambda: work_precision(quick, reference_setting),
         "outcome accuracy": lambda: outcome_accuracy(count),
         "stability limits": lambda: stability_limits(quick),
-        "peers": lambda: peers(quick),
+        "peers": lambda: peers(quick, reference_setting),
         "simulator throughput": lambda: sim_throughput.to_markdown(sim_throughput.run(quick)),
         "fast path": lambda: {label: summarise(compare(scene, sample_throws(scene, 6 if quick else 300), 1, overrides))
                               for label, (scene, overrides) in CASES.items()},
@@ -76,7 +78,7 @@ def measure(quick: bool, count: int, reference: Path | None = None) -> Report:
         for name, run in bar:
             bar.set_postfix_str(name)
             results.append(run())
-    return Report(count, *results)
+    return Report(count, reference_setting, *results)
 
 
 def _env_table(report: Report) -> str:
@@ -142,7 +144,7 @@ def to_markdown(report: Report) -> str:
         "",
         f"Scenario: the default basket at rest; a ball launched from {STRIKE[0].tolist()} m at "
         f"{STRIKE[1].tolist()} m/s strikes the bottom of the net; {STRIKE_SECONDS} s simulated. Reference: "
-        f"{REFERENCE[0]} at dt = {REFERENCE[1]:g} s. Ball error: RMS over the strike (sampled every {SAMPLE} s) of "
+        f"{report.reference[0]} at dt = {report.reference[1]:g} s. Ball error: RMS over the strike (sampled every {SAMPLE} s) of "
         "the distance to the reference ball; net error: RMS distance of the particles to the reference at the end. "
         "Contacts are resolved after each step (non-smooth), which limits every integrator to first order "
         "once the ball touches the net.",

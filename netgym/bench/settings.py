@@ -4,6 +4,7 @@ each integrator, the scenes' default setting and the setting the peers run."""
 from __future__ import annotations
 
 REFERENCE = ("rk4", 1e-5)
+QUICK_REFERENCE = ("rk4", 1e-4)  # --quick: settling the net at 0.01 ms alone takes a minute
 SWEEPS = {
     "explicit_euler": [1e-4, 2e-4, 2.5e-4, 5e-4],
     "symplectic_euler": [1e-4, 2e-4, 2.5e-4, 5e-4],
