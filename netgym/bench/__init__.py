@@ -13,7 +13,11 @@ Modules, one job each:
 - :mod:`netgym.bench.stability_limits`: largest stable dt, bisected and estimated;
 - :mod:`netgym.bench.peers`: the same net in NumPy and MuJoCo;
 - :mod:`netgym.bench.plots`: the report's figures;
-- :mod:`netgym.bench.report`: every section measured, and the report's markdown.
+- :mod:`netgym.bench.episodes`: whole episodes as a user trains on them, the pauses booked;
+- :mod:`netgym.bench.episode_agreement`: seeded episodes against a fine reference pipeline;
+- :mod:`netgym.bench.pause_accuracy`: the pause between throws against a fine relaxation;
+- :mod:`netgym.bench.report`: every section measured, and the report's markdown;
+- :mod:`netgym.bench.report_text`: the report's fixed prose, its dated findings included.
 
 The noisy-oracle throws use the ballistic oracle of the sibling package ``agents`` (same
 distribution). It is imported inside the functions that need it

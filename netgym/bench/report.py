@@ -16,6 +16,26 @@ from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import CASES, compare, summarise
 from netgym.bench.outcomes import outcome_accuracy
 from netgym.bench.peers import peers
+from netgym.bench.report_text import (
+    AGREEMENT_NOTES,
+    AGREEMENT_TEXT,
+    EPISODES_NOTES,
+    EPISODES_TEXT,
+    ERROR_MODEL_TEXT,
+    FAST_PATH_TEXT,
+    FLIGHT_TEXT,
+    HELD_AGREEMENT_TEXT,
+    NATIVE_VECTOR_ENV_TEXT,
+    NOTHING_TO_SETTLE_TEXT,
+    PAUSE_ACCURACY_NOTES,
+    PAUSE_ACCURACY_TEXT,
+    PAUSE_TEXT,
+    PILE_FRICTION_TEXT,
+    STATIC_PAUSE_TEXT,
+    STEP_LIMIT_TEXT,
+    SUBSTEPS_TEXT,
+    WAVEFRONT_TEXT,
+)
 from netgym.bench.settings import DEFAULT, PEER_SETTING, QUICK_REFERENCE, REFERENCE
 from netgym.bench.stability_limits import stability_limits
 from netgym.bench.throws import sample_throws
@@ -104,8 +124,7 @@ def _gains(report: Report) -> list[str]:
         f"({100 * basket['agreement']:.1f}% outcome agreement).",
         f"- numba kernels (fused spring loop, contacts with a bounding-box broad phase) over vectorised NumPy: "
         f"{peer_rows[0]['steps_per_s'] / peer_rows[1]['steps_per_s']:.0f}x steps/s at the same error.",
-        "- Substeps only where a ball is near: a free-flying or far ball adds no substeps; the relative-speed bound "
-        "counts only particles that can reach a ball within the step.",
+        SUBSTEPS_TEXT,
         f"- IMEX Euler (elastic forces explicit, dampers and drag implicit), which the dampers no longer hold below "
         f"1 ms: the default at {DEFAULT[1] * 1e3:g} ms decides {default['throws_per_s'] / explicit['throws_per_s']:.1f}x "
         f"the throws/s of {PEER_SETTING[0]} at {PEER_SETTING[1] * 1e3:g} ms ({100 * default['agreement']:.1f}% vs "
@@ -116,15 +135,14 @@ def _gains(report: Report) -> list[str]:
         "expressions: on 300 throws (seed 0) with symplectic Euler at 0.5 ms, substeps per touching throw 231 -> 116, "
         "Python time per touching throw 1.57 -> 0.66 ms, touching throws/s 130 -> 263 (measured before and after "
         "the change that introduced them, same machine).",
-        "- Tried, not adopted: ordering the springs by a greedy edge colouring (no two consecutive springs share a "
-        "particle) instead of by particle index: symplectic Euler step 22.9 -> 23.2 us, IMEX Euler step 50.5 -> 47.6 "
-        "us on the basket (same run; too small a gain for a second spring order).",
+        WAVEFRONT_TEXT,
         ERROR_MODEL_TEXT,
         NOTHING_TO_SETTLE_TEXT,
         PAUSE_TEXT,
         STEP_LIMIT_TEXT,
         FLIGHT_TEXT,
         NATIVE_VECTOR_ENV_TEXT,
+        PILE_FRICTION_TEXT,
         STATIC_PAUSE_TEXT,
     ]
 
@@ -197,7 +215,7 @@ def to_markdown(report: Report) -> str:
         linear = "unconditional" if math.isinf(r["linear"]) else f"{r['linear'] * 1e3:.3g} ms"
         out.append(f"| {r['scene']} | {r['integrator']} | {found} | {linear} |")
     out += ["", "## 4. Throughput", "", "Simulator (`scripts/bench_sim.py`):", "", sim_table, "",
-            "Environment (`scripts/bench_env.py`):", "", env_table, "",
+            "Environment (`scripts/bench_env.py`):", "", env_table, "", HELD_AGREEMENT_TEXT, "", FAST_PATH_TEXT, "",
             "## 5. Peers", "",
             "The same net (604 particles, 3250 springs, same masses, springs, dampers, drag and gravity), released "
             f"from its built shape, {PEER_SETTING[1] * 1e3:g} ms steps, error against the same rk4 reference after the "
@@ -212,84 +230,7 @@ def to_markdown(report: Report) -> str:
     for r in peer_rows:
         out.append(f"| {r['system']} | {r['steps_per_s']:,.0f} | {r['error']:.2e} | {ours / r['steps_per_s']:.1f}x |")
     out += ["", "## 6. What the optimisations bought (ratios of the figures above)", "", *gains]
-    out += ["", "## 7. Episodes", "", EPISODES_TEXT, "", report.episodes]
-    out += ["", "## 8. Do the shortcuts change episodes?", "", AGREEMENT_TEXT, "", report.agreement]
-    out += ["", "## 9. How near the pause comes to the equilibrium", "", PAUSE_ACCURACY_TEXT, "", report.pause]
+    out += ["", "## 7. Episodes", "", EPISODES_TEXT, "", report.episodes, "", EPISODES_NOTES]
+    out += ["", "## 8. Do the shortcuts change episodes?", "", AGREEMENT_TEXT, "", report.agreement, "", AGREEMENT_NOTES]
+    out += ["", "## 9. How near the pause comes to the equilibrium", "", PAUSE_ACCURACY_TEXT, "", report.pause, "", PAUSE_ACCURACY_NOTES]
     return "\n".join(out) + "\n"
-
-
-EPISODES_TEXT = ("What training pays: whole 3-ball episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py` "
-                 "has more rows). With the oracle every ball is caught, so after every throw but an episode's last "
-                 "the loaded net settles (dynamic relaxation, the net kinetically damped, IMEX Euler at "
-                 "`simulation.settle_dt`, 11.5 ms on the basket: 90% of its stability limit there) until nothing has moved faster than "
-                 "`simulation.settle_speed` (0.1 m/s) over the last 0.1 s; `info['settle_substeps']` books that pause "
-                 "in the step that caused it and `info['substeps']` all the work of a step.")
-AGREEMENT_TEXT = (
-    "The same seeded 5-ball episodes (same throwers, same actions; half the ballistic oracle with noise on its "
-    "actions, half random) in the default pipeline and in a reference pipeline: 0.5 ms steps, every throw "
-    "simulated in full to its time limit, the pause between throws relaxed at 0.5 ms until nothing moves faster "
-    "than 1 mm/s. Throws 2..N meet the net and the balls as each pipeline left them, so they test the pause and the "
-    "fast path together. `python scripts/episode_agreement.py` (the reference is stored in "
-    "`docs/figures/episode_reference.json`; `--candidate FIELD=VALUE` compares other settings against it). The "
-    "second pipeline pauses at the scene's own 2 ms step instead of `simulation.settle_dt` (11.5 ms).")
-STATIC_PAUSE_TEXT = (
-    "- Tried, not adopted: the pause as a static equilibrium solve (branch `experiment/static-pause`): minimise "
-    "spring + gravity energy with penalty contacts by damped Newton (Levenberg-Marquardt, the springs' Hessian "
-    "clamped under compression, Gauss-Newton contacts, Jacobi-preconditioned CG, steps capped at a quarter ball "
-    "radius). On 21 captures of 1-6 balls it took 60-200 Newton steps and 2,500-12,300 CG iterations, 63-551 ms "
-    "a pause, against 17-208 ms for the dynamic relaxation of the time (frictionless balls roll far on the flat "
-    "bottom); with the balls held laterally, on 14 captures, 16-41 steps, 30-125 ms against 31-119 ms. Ending the dynamic pause "
-    "at 0.1 m/s instead (section 8: outcomes unchanged) was the cheaper gain.")
-PAUSE_ACCURACY_TEXT = (
-    "Seeded loaded basket nets (1-10 balls dropped one after another, each throw decided and paused as usual): "
-    "from the state the last throw left, each pause against a reference relaxation (the same relaxation at "
-    "0.5 ms, ended at 3 mm/s) from the same state; errors are the largest ball distance and the RMS net particle "
-    "distance to the reference's end state. `python scripts/pause_accuracy.py`. The finer reference (0.25 ms) "
-    "shows how well the equilibrium is defined: friction makes where the balls of a pile come to rest depend on "
-    "the path there, and a stricter rest test lets piles creep on (at 1 mm/s, piles often do not come to rest "
-    "within a minute).")
-PAUSE_TEXT = (
-    "- The pause between throws at a larger step, in one kernel: dynamic relaxation with IMEX Euler at "
-    "`simulation.settle_dt` (at first 6 ms on the basket, 90% of the linear stability limit as it was then "
-    "estimated; the scene's own integrator and dt if it diverges), the net kinetically damped after every step and a sliding 0.1 s rest "
-    "window, in one numba call instead of a Python loop over 10 ms chunks. On the episodes of section 8, one run: "
-    "64.2 throws/s against 55.0 for the same kernel at the scene's 2 ms, the same outcomes. Damping the balls "
-    "too made this pause 2-3x faster (basket oracle 3-ball episodes 119-185 throws/s, 10-ball 61-82, goal "
-    "18-28, in runs minutes apart) and left piles of balls still collapsing (section 9); not adopted. Tried "
-    "earlier with the Python loop (every body damped, checked every 10 ms), a 3.7 ms pause settled more "
-    "slowly than the 2 ms one (29 -> 21 throws/s).")
-STEP_LIMIT_TEXT = (
-    "- The pause at the stability limit IMEX Euler really has: its linearised step on the net, damper sweep "
-    "included, is stable while lambda_max(h^2 F K F^T - 2 F F^T + 2 I) < 2 + 2 / keep (section 3): 12.8 ms on the "
-    "basket, where the elastic forces alone gave 7.44 ms (bisection: 14 ms). The pause steps at 90% of it, 11.5 ms "
-    "instead of 6 ms (the goal 3.9 instead of 1.8 ms). Oracle episodes on the basket, both steps alternating twice "
-    "in one process (`scripts/bench_episodes.py --candidate simulation.settle_dt=0.006` runs the same comparison): "
-    "3 balls 102.0-106.6 -> 134.2-183.7 throws/s, step p99 24.2-25.5 -> 11.6-14.0 ms, settling substeps p50 80 -> "
-    "46.5; 10 balls 54.7-79.1 -> 78.1-94.8 throws/s. Outcomes unchanged (section 8); the balls of piles come to "
-    "rest farther from where a fine relaxation puts them (section 9).")
-FLIGHT_TEXT = (
-    "- A flight computed once where it can be: whether and when a parabola (with its bounces) comes into the "
-    "box around everything is one answer along the whole flight, so the ball is flown there in one piece and "
-    "conservative steps start only inside (flight checks per basket oracle throw p50 15 -> 10, Python time of "
-    "the flight 1.3 -> 0.45 ms per throw, profiled minutes apart). The line rule's instant is found along the "
-    "flight to 0.1 ms, where it was the end of a flight step of up to tens of centimetres.")
-ERROR_MODEL_TEXT = (
-    "- Every kernel compiled with numpy's floating-point error model (`netgym.physics.jit`): numba then puts no "
-    "zero check before each division. Bitwise the same results (the golden episodes); on the basket, one run: "
-    "IMEX Euler step 112 -> 89 us, the accelerations of the explicit methods 41 -> 35 us.")
-NOTHING_TO_SETTLE_TEXT = (
-    "- No pause where nothing moved, none to compute where the answer is known: a missed ball flown in closed "
-    "form clear of the sleeping scene leaves it asleep (it woke the net for a pause of at least the 0.1 s rest "
-    "window before); a goal under the `line` rule is taken out once scored, as in the sport (it rolled on in the "
-    "goal, and the next throw waited seconds for it to rest); a net left moving with no ball in it is put back in "
-    "its settled shape instead of being relaxed. `scripts/bench_episodes.py`, 2026-11-26 against 2026-11-27 "
-    "(with that day's other changes: the settled net at rest, the rest test on positions; runs a day apart): "
-    "basket random 3-ball episodes 118.5 -> 327.1 throws/s (step p50 3.1 -> 0.3 ms), goal oracle 6.1 -> 3481.6, "
-    "goal random 16.8 -> 87.2.")
-NATIVE_VECTOR_ENV_TEXT = (
-    "- Tried, then removed: a native vector environment (the integration of all environments of a step in one "
-    "parallel numba call) and its SB3 adapter. Basket, 8 environments, noisy oracle actions, one run: 28.2 throws/s "
-    "on 1 numba thread and 38.0 on 2 (1.35x), against about 30 for a Gymnasium SyncVectorEnv of 8 NetCatch-v0 in one "
-    "process (40.2 env steps/s in its default next-step autoreset, where one step in four only resets); through SB3, 41.7 env steps/s against 45.4 for SubprocVecEnv (a second run: 19.9 and 36.1 throws/s "
-    "against 43.9; 43.5 against 41.3 env steps/s). The second code path did not pay for itself: SB3 training uses "
-    "SubprocVecEnv, Gymnasium users SyncVectorEnv or AsyncVectorEnv.")
