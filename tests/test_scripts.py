@@ -111,7 +111,8 @@ def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same
 
     assert f"{Simulator('basket').settle_dt * 1e3:.1f} ms" in list(PAUSES)[0]  # the default's label says its step
     out = _run("scripts/pause_accuracy.py", "--quick", "--candidate", "simulation.settle_dt=0.006")
-    rows = [line.split("|") for line in out.splitlines() if line.startswith("| ") and "---" not in line][1:]
+    main, grouped = (block for block in out.split("\n\n") if block.startswith("| "))
+    rows = [line.split("|") for line in main.splitlines() if "---" not in line][1:]
     candidate = "default with simulation.settle_dt=0.006"
     assert [row[1].strip() for row in rows] == [*PAUSES, candidate]
     by_label = {row[1].strip(): row for row in rows}
@@ -124,3 +125,8 @@ def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same
         if int(row[2]) > 0:
             p50, p90, worst = (float(v) for v in row[4].split("/"))
             assert 0.0 <= p50 <= p90 <= worst
+    # by ball count: the default pause and the finer reference, each net at rest in exactly one group
+    groups = [line.split("|") for line in grouped.splitlines() if "---" not in line][1:]
+    assert [row[1].strip() for row in groups] == ["1", "1", "2-4", "2-4", "5-10", "5-10"]
+    for label in (list(PAUSES)[0], list(PAUSES)[-1]):
+        assert sum(int(row[3]) for row in groups if row[2].strip() == label) == int(by_label[label][2])

@@ -123,31 +123,51 @@ def candidate_label(overrides: Mapping[str, Any]) -> str:
     return "default with " + describe_overrides(overrides)
 
 
+BALL_GROUPS = ((1, 1), (2, 4), (5, 10))  # loaded nets by their ball count: a lone ball, small piles, large piles
+GROUPED_PAUSES = (list(PAUSES)[0], list(PAUSES)[-1])  # the default pause and the finer reference
+
+
 def to_markdown(rows: list[dict]) -> str:
-    """The table: per pause, p50 / p90 / max of the errors, the share within 5 mm (balls) and
-    2 mm RMS (net), the drift after it, and the cost."""
-    settled = [r["pauses"] for r in rows if r["pauses"] is not None]
+    """The tables: per pause, p50 / p90 / max of the errors, the share within 5 mm (balls) and
+    2 mm RMS (net), the drift after it, and the cost; then the errors of the default pause and of
+    the finer reference by the number of balls in the net (a lone ball against piles)."""
+    settled = [r for r in rows if r["pauses"] is not None]
     lines = [f"{len(rows) - len(settled)} of {len(rows)} loaded nets left out: the reference did not come to rest "
              f"within {REFERENCE['max_time']:g} s.", "",
              "| pause | loaded nets at rest | not at rest | ball error p50 / p90 / max (mm) | balls within 5 mm | "
              "net RMS error p50 / p90 / max (mm) | net within 2 mm | ball drift in the next second p50 / p90 / max (mm) | "
              "wall ms p50 / p99 / max | simulated s p50 |",
              "|---|---:|---:|---|---:|---|---:|---|---|---:|"]
-    labels = list(settled[0]) if settled else list(PAUSES)
+    labels = list(settled[0]["pauses"]) if settled else list(PAUSES)
     for label in labels:
-        done = [p[label] for p in settled if p[label] is not None]
+        done = [r["pauses"][label] for r in settled if r["pauses"][label] is not None]
         if not done:
             lines.append(f"| {label} | 0 | {len(settled)} | - | - | - | - | - | - | - |")
             continue
-        ball, net, wall, simulated, drift = (np.array([p[key] for p in done])
-                                             for key in ("ball", "net", "wall", "simulated", "drift"))
-        ball, net, wall, drift = 1e3 * ball, 1e3 * net, 1e3 * wall, 1e3 * drift
-        lines.append(f"| {label} | {len(done)} | {len(settled) - len(done)} | {_spread(ball)} | "
-                     f"{100 * np.mean(ball <= 5.0):.0f}% | "
-                     f"{_spread(net)} | {100 * np.mean(net <= 2.0):.0f}% | {_spread(drift)} | "
+        wall, simulated, drift = (np.array([p[key] for p in done]) for key in ("wall", "simulated", "drift"))
+        wall, drift = 1e3 * wall, 1e3 * drift
+        lines.append(f"| {label} | {len(done)} | {len(settled) - len(done)} | {_errors(done)} | {_spread(drift)} | "
                      f"{np.median(wall):.1f} / {np.percentile(wall, 99):.1f} / {wall.max():.1f} | "
                      f"{np.median(simulated):.2f} |")
+    lines += ["", "By the number of balls in the net:", "",
+              "| balls | pause | loaded nets at rest | ball error p50 / p90 / max (mm) | balls within 5 mm | "
+              "net RMS error p50 / p90 / max (mm) | net within 2 mm |",
+              "|---|---|---:|---|---:|---|---:|"]
+    for low, high in BALL_GROUPS:
+        group = [r for r in settled if low <= r["balls"] <= high]
+        for label in GROUPED_PAUSES:
+            done = [r["pauses"][label] for r in group if r["pauses"].get(label) is not None]
+            balls = str(low) if low == high else f"{low}-{high}"
+            lines.append(f"| {balls} | {label} | {len(done)} | {_errors(done) if done else '- | - | - | -'} |")
     return "\n".join(lines)
+
+
+def _errors(done: list[dict]) -> str:
+    """The error columns of pauses ``done``: ball error spread and share within 5 mm, net RMS
+    error spread and share within 2 mm."""
+    ball, net = (1e3 * np.array([p[key] for p in done]) for key in ("ball", "net"))
+    return (f"{_spread(ball)} | {100 * np.mean(ball <= 5.0):.0f}% | "
+            f"{_spread(net)} | {100 * np.mean(net <= 2.0):.0f}%")
 
 
 def _spread(values: np.ndarray) -> str:
