@@ -28,6 +28,23 @@ def test_a_ball_settled_on_the_basket_bottom_stays_put(integrator: str, dt: floa
     assert np.linalg.norm(sim.ball_positions[0] - settled) < 1e-3
 
 
+@pytest.mark.parametrize(("integrator", "dt"), [("imex_euler", 2e-3), ("imex_euler", 1e-3), ("imex_euler", 5e-4),
+                                                ("symplectic_euler", 5e-4)])
+def test_a_ball_resting_on_two_others_in_the_net_stays_put(integrator: str, dt: float) -> None:
+    """A pile: one ball dropped onto two in the basket's bottom. Once settled it stays (the
+    contacts between balls are resolved before each ball's supports, whose static friction then
+    holds what those contacts pushed; resolved after them, the pushes escaped it and the pile
+    crept on at 1-7 mm/s, the top ball sinking between the others)."""
+    sim = Simulator("basket", {"simulation.integrator": integrator, "simulation.dt": dt})
+    for position in ([0.3, 0.0, 1.2], [-0.3, 0.0, 1.2], [0.0, 0.0, 2.2]):
+        sim.launch_ball(position, [0.0, 0.0, 0.0])
+    sim.step(round(6.0 / dt))  # dropped, bounced and settled
+    assert sim.ball_positions[2, 2] > sim.ball_positions[:2, 2].max() + sim.model.ball_radius  # a pile, on top
+    settled = sim.ball_positions.copy()
+    sim.step(round(2.0 / dt))
+    assert np.linalg.norm(sim.ball_positions - settled, axis=1).max() < 1e-3
+
+
 def _tilted_patch(angle: float, spacing: float = 0.05, half: int = 30) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A flat, immovable square grid of particles and structural segments, tilted by ``angle``
     about the y axis (it descends towards +x); returns positions, segments and the downhill unit vector."""

@@ -222,18 +222,16 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold
 
 @kernel
 def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef, threshold, net_box):
-    """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass).
+    """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass): ball/ball
+    pairs first, then each ball's poles and net, then the ground. A pair's projection pushes
+    its balls along the line between them, partly along their supports; the supports' static
+    friction, resolved after it, holds that push as it holds gravity's. (Resolved after the
+    supports, the pushes escaped their friction and piles crept on for good.)
 
     ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
     sphere does not overlap it skips the particle and segment tests (broad phase).
     """
     n = x.shape[0]
-    for b in range(n_net, n):
-        _ball_poles(x, v, start, b, radius, poles, coef, threshold)
-        if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
-                and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
-                and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
-            _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold)
     reach = 2.0 * radius
     for b in range(n_net, n):
         for c in range(b + 1, n):
@@ -246,6 +244,12 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef
             nx, ny, nz, dist = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
             _pair_response(x, v, inv_mass, start, b, c, c, 0.0, nx, ny, nz, reach - dist,
                            coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
+    for b in range(n_net, n):
+        _ball_poles(x, v, start, b, radius, poles, coef, threshold)
+        if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
+                and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
+                and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
+            _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
         if x[k, 2] < floor and inv_mass[k] > 0.0:
