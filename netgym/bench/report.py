@@ -19,6 +19,7 @@ from netgym.bench.peers import peers
 from netgym.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
+    CONTACT_ORDER_TEXT,
     EPISODES_NOTES,
     EPISODES_TEXT,
     ERROR_MODEL_TEXT,
@@ -142,6 +143,7 @@ def _gains(report: Report) -> list[str]:
         STEP_LIMIT_TEXT,
         FLIGHT_TEXT,
         NATIVE_VECTOR_ENV_TEXT,
+        CONTACT_ORDER_TEXT,
         PILE_FRICTION_TEXT,
         STATIC_PAUSE_TEXT,
     ]
