@@ -130,3 +130,18 @@ def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same
     assert [row[1].strip() for row in groups] == ["1", "1", "2-4", "2-4", "5-10", "5-10"]
     for label in (list(PAUSES)[0], list(PAUSES)[-1]):
         assert sum(int(row[3]) for row in groups if row[2].strip() == label) == int(by_label[label][2])
+
+
+def test_pile_creep_quick_measures_every_arranged_pile_and_the_loaded_nets() -> None:
+    from netgym.bench.creep import ARRANGED
+
+    out = _run("scripts/pile_creep.py", "--quick")
+    rows = [line.split("|") for line in out.splitlines() if line.startswith("| ") and "---" not in line]
+    header, row = rows
+    assert [cell.strip() for cell in header[2:2 + len(ARRANGED)]] == [f"{label} (mm)" for label in ARRANGED]
+    assert row[1].strip() == "2"
+    assert all(float(cell) < 1.0 for cell in row[2:2 + len(ARRANGED)])  # piles at rest stay at rest
+    loaded = int(row[2 + len(ARRANGED)])
+    assert 1 <= loaded <= 3
+    p50, p90, worst = (float(v) for v in row[3 + len(ARRANGED)].split("/"))
+    assert 0.0 <= p50 <= p90 <= worst

@@ -16,6 +16,7 @@ Modules, one job each:
 - :mod:`netgym.bench.episodes`: whole episodes as a user trains on them, the pauses booked;
 - :mod:`netgym.bench.episode_agreement`: seeded episodes against a fine reference pipeline;
 - :mod:`netgym.bench.pause_accuracy`: the pause between throws against a fine relaxation;
+- :mod:`netgym.bench.creep`: how far balls at rest in piles still move;
 - :mod:`netgym.bench.report`: every section measured, and the report's markdown;
 - :mod:`netgym.bench.report_text`: the report's fixed prose, its dated findings included.
 

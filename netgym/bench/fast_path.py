@@ -12,7 +12,6 @@ from dataclasses import dataclass
 from netgym.bench.throws import Throw
 from netgym.physics.simulator import Simulator
 
-
 CASES = {  # label: scene and overrides of the fast-path comparisons the benchmarks print
     "basket": ("basket", None),
     "goal": ("goal", None),

@@ -11,7 +11,13 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from netgym.bench import episode_agreement, episodes, pause_accuracy, sim_throughput
+from netgym.bench import (
+    creep,
+    episode_agreement,
+    episodes,
+    pause_accuracy,
+    sim_throughput,
+)
 from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import CASES, compare, summarise
 from netgym.bench.outcomes import outcome_accuracy
@@ -20,6 +26,7 @@ from netgym.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
     CONTACT_ORDER_TEXT,
+    CREEP_TEXT,
     EPISODES_NOTES,
     EPISODES_TEXT,
     ERROR_MODEL_TEXT,
@@ -58,7 +65,8 @@ class Report:
     vector_envs: dict[str, float]           # env_throughput.SETUPS key -> env steps/s
     episodes: str                           # episodes.to_markdown's table
     agreement: str                          # episode agreement table (default and the pause at 2 ms)
-    pause: str                              # pause_accuracy.to_markdown's table
+    pause: str                              # pause_accuracy.to_markdown's tables
+    creep: str                              # creep.to_markdown's table
 
 
 def _agreement(quick: bool, reference: Path | None) -> str:
@@ -93,6 +101,8 @@ def measure(quick: bool, count: int, reference: Path | None = None) -> Report:
         "episode agreement": lambda: _agreement(quick, reference),
         "pause accuracy": lambda: pause_accuracy.to_markdown(pause_accuracy.pause_accuracy(2 if quick else 200,
                                                                                            progress=False)),
+        "pile creep": lambda: creep.to_markdown(creep.creep([2e-3] if quick else [2e-3, 1e-3, 5e-4], 3 if quick else 48,
+                                                            progress=False)),
     }
     results = []
     with tqdm(sections.items(), desc="report", unit="section") as bar:
@@ -234,5 +244,6 @@ def to_markdown(report: Report) -> str:
     out += ["", "## 6. What the optimisations bought (ratios of the figures above)", "", *gains]
     out += ["", "## 7. Episodes", "", EPISODES_TEXT, "", report.episodes, "", EPISODES_NOTES]
     out += ["", "## 8. Do the shortcuts change episodes?", "", AGREEMENT_TEXT, "", report.agreement, "", AGREEMENT_NOTES]
-    out += ["", "## 9. How near the pause comes to the equilibrium", "", PAUSE_ACCURACY_TEXT, "", report.pause, "", PAUSE_ACCURACY_NOTES]
+    out += ["", "## 9. How near the pause comes to the equilibrium", "", PAUSE_ACCURACY_TEXT, "", report.pause, "", PAUSE_ACCURACY_NOTES,
+            "", CREEP_TEXT, "", report.creep]
     return "\n".join(out) + "\n"

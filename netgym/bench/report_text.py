@@ -223,3 +223,9 @@ PAUSE_ACCURACY_NOTES = (
     "the median) counted such second runs as that pause. An earlier pause damped the balls kinetically too; "
     "on 200 loaded nets its balls then moved p50 95 mm, p90 541 mm, max 1197 mm within the second: it stopped "
     "piles that were still collapsing.")
+CREEP_TEXT = (
+    "Do balls at rest stay at rest? The largest distance a ball moves over 2 s, simulated on at the basket's own "
+    "integrator once it came to rest: arranged piles dropped onto the bottom (settled for 6 s first) and seeded "
+    "loaded nets of 2-10 balls (paused as between throws, then simulated on for 1 s first: a pile the pause let "
+    "go at 0.1 m/s may still be collapsing). `python scripts/pile_creep.py`; the README (\"Speed and accuracy\") "
+    "has the cause of what is left.")
