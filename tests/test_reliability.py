@@ -229,20 +229,25 @@ def test_a_pause_that_cannot_come_to_rest_in_time_raises_a_named_error() -> None
     assert np.isfinite(sim.state.x).all() and sim.awake
 
 
-@pytest.mark.parametrize("seed", [0, 1])
-def test_the_pause_leaves_a_pile_as_still_as_a_relaxation_at_the_scenes_own_step(seed: int) -> None:
-    """After the pause (IMEX Euler at 11.5 ms), a loaded net simulated on for a second moves no
-    more than after the same relaxation at the scene's own 2 ms step (within 2 cm), and under
-    0.15 m: the large step does not stop a pile that is still collapsing. Damping the balls
-    kinetically did (piles then moved 0.20-0.46 m). Neither holds every pile still: the rest
-    test (nothing faster than 0.1 m/s) passes a pile that creeps more slowly; seed 0's moves
-    about 0.1 m in that second after either (a fine relaxation, 0.5 ms to 3 mm/s, needs 20 s)."""
+def test_the_pause_leaves_piles_as_still_as_a_relaxation_at_the_scenes_own_step() -> None:
+    """After the pause (IMEX Euler at 11.5 ms), loaded nets of 5-10 balls simulated on for a
+    second move no more than after the same relaxation at the scene's own 2 ms step (medians
+    within 2 cm), and none over 0.15 m: the large step does not stop piles that are still
+    collapsing. Damping the balls kinetically did (piles then moved 0.20-0.46 m). Neither holds
+    every pile still: the rest test (nothing faster than 0.1 m/s) passes a pile that creeps more
+    slowly, and which of the two pauses leaves a given pile stiller varies from pile to pile
+    (on these 28 nets the default leaves 6 moving over 2 cm more, the 2 ms pause others far more)."""
     from netgym.bench.pause_accuracy import loaded_net, pause
 
     sim = Simulator("basket")
-    assert loaded_net(sim, seed) >= 5
-    start = sim.checkpoint()
-    drift = pause(sim).drift
-    sim.restore(start)
-    assert drift < pause(sim, dt=sim.dt).drift + 0.02
-    assert drift < 0.15
+    default, fine = [], []
+    for seed in range(40):
+        if loaded_net(sim, seed) < 5:
+            continue
+        start = sim.checkpoint()
+        default.append(pause(sim).drift)
+        sim.restore(start)
+        fine.append(pause(sim, dt=sim.dt).drift)
+    assert len(default) == 28
+    assert np.median(default) < np.median(fine) + 0.02
+    assert max(default) < 0.15
