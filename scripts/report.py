@@ -12,7 +12,9 @@ Sections (each measured in this run, on one core unless stated):
    8 environments in a Gymnasium SyncVectorEnv and in SB3's SubprocVecEnv;
 5. peers: the same net in a NumPy vectorised implementation, same dt, same reference;
 6. ratios of the above; 7. whole episodes (step times, the pause booked);
-8. episode agreement: the default pipeline against the stored reference episodes.
+8. episode agreement: the default pipeline against the stored reference episodes;
+9. the pause against a fine relaxation of the same loaded nets, and how far balls at rest in
+   piles still move.
 
 Usage::
 
