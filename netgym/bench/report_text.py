@@ -174,7 +174,10 @@ PILE_FRICTION_TEXT = (
     "friction of order friction x g dt^2 per step to a sliding ball, which stops it early. Four passes cost "
     "19% of the 10-ball episodes' throughput (87.9 -> 71.1 throws/s, same run); 3-ball episodes the same. "
     "Part of the creep that remained in the net came from the order of the contacts (the bullet before this "
-    "one); the rest of it is first order in dt too.")
+    "one); the rest of it is first order in dt too. Tried again after the contacts between balls came first: "
+    "the clamp alone held the pyramid to 3.2 mm/s (12 mm/s without it, in that setup), but on the 43 loaded "
+    "nets of `scripts/pile_creep.py` at 2 ms moved the largest creep per net p50 / p90 / max from 8.1 / 32.8 "
+    "/ 106.5 to 11.3 / 25.8 / 60.5 mm: no clear gain; not adopted.")
 
 EPISODES_NOTES = (
     "Every pause of the basket's oracle episodes holds balls, and the pause is the physics of those balls "
