@@ -151,7 +151,7 @@ CONTACT_ORDER_TEXT = (
     "pair's projection pushes its balls along the line between them, partly along their supports, and the "
     "supports' static friction, resolved after it, now holds that push as it holds gravity. Resolved after "
     "the supports, the pushes escaped friction and piles crept on for good: a ball resting on two others in "
-    "the basket moved 14, 5 and 2 mm per 2 s at IMEX Euler 2, 1 and 0.5 ms, its top ball sinking between the "
+    "the basket moved 12, 4 and 2 mm per 2 s at IMEX Euler 2, 1 and 0.5 ms, its top ball sinking between the "
     "others; now 0.02 mm (`tests/test_resting_contact.py`). On 43 loaded nets (2-10 balls, paused, simulated "
     "on for a second, then measured over 2 s) the largest creep per net fell from a median of 15.4 to 8.1 mm "
     "at 2 ms, 10.4 to 6.1 at 1 ms and 5.4 to 4.0 at 0.5 ms (max 437 -> 25 mm). The same work per step, and no "
