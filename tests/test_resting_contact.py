@@ -34,7 +34,7 @@ def test_a_ball_resting_on_two_others_in_the_net_stays_put(integrator: str, dt: 
     """A pile: one ball dropped onto two in the basket's bottom. Once settled it stays (the
     contacts between balls are resolved before each ball's supports, whose static friction then
     holds what those contacts pushed; resolved after them, the pushes escaped it and the pile
-    crept on at 1-7 mm/s, the top ball sinking between the others)."""
+    crept on at 1-6 mm/s, the top ball sinking between the others)."""
     sim = Simulator("basket", {"simulation.integrator": integrator, "simulation.dt": dt})
     for position in ([0.3, 0.0, 1.2], [-0.3, 0.0, 1.2], [0.0, 0.0, 2.2]):
         sim.launch_ball(position, [0.0, 0.0, 0.0])
