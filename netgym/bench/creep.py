@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 from tqdm import tqdm
 
-from netgym.bench.pause_accuracy import loaded_net
+from netgym.bench.pause_accuracy import largest_move, loaded_net
 from netgym.physics.simulator import Simulator
 
 ARRANGED = {  # label: drop positions (m), released at rest above the basket's bottom
@@ -33,13 +33,6 @@ class CreepRow:
     dt: float
     arranged: dict[str, float]
     loaded: list[float]   # one per loaded net of 2 balls or more
-
-
-def largest_move(sim: Simulator, seconds: float) -> float:
-    """Simulate ``sim`` on for ``seconds``; the largest distance a ball moved meanwhile (m)."""
-    before = sim.ball_positions.copy()
-    sim.step(round(seconds / sim.dt))
-    return float(np.linalg.norm(sim.ball_positions - before, axis=1).max(initial=0.0))
 
 
 def arranged_creep(sim: Simulator, positions: Sequence[Sequence[float]]) -> float:

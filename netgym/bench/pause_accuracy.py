@@ -65,16 +65,21 @@ def loaded_net(sim: Simulator, seed: int) -> int:
     return count
 
 
+def largest_move(sim: Simulator, seconds: float) -> float:
+    """Simulate ``sim`` on for ``seconds``; the largest distance a ball moved meanwhile (m)."""
+    before = sim.ball_positions
+    sim.step(round(seconds / sim.dt))
+    return float(np.linalg.norm(sim.ball_positions - before, axis=1).max(initial=0.0))
+
+
 def pause(sim: Simulator, **relaxation: Any) -> PauseResult:
     """Run the pause (``relaxation``: arguments of ``relax_plan``; none for the default one),
     then simulate on for DRIFT_TIME."""
     start, time0 = time.perf_counter(), sim.state.time
     sim.run(sim.relax_plan(**relaxation))
     wall, n = time.perf_counter() - start, sim.model.n_net
-    balls, net, simulated = sim.state.x[n:].copy(), sim.state.x[:n].copy(), sim.state.time - time0
-    sim.step(round(DRIFT_TIME / sim.dt))
-    drift = float(np.linalg.norm(sim.state.x[n:] - balls, axis=1).max(initial=0.0))
-    return PauseResult(balls, net, wall, simulated, drift)
+    balls, net, simulated = sim.ball_positions, sim.state.x[:n].copy(), sim.state.time - time0
+    return PauseResult(balls, net, wall, simulated, largest_move(sim, DRIFT_TIME))
 
 
 def errors(result: PauseResult, reference: PauseResult) -> tuple[float, float]:
@@ -156,7 +161,7 @@ def to_markdown(rows: list[dict]) -> str:
     for low, high in BALL_GROUPS:
         group = [r for r in settled if low <= r["balls"] <= high]
         for label in GROUPED_PAUSES:
-            done = [r["pauses"][label] for r in group if r["pauses"].get(label) is not None]
+            done = [r["pauses"][label] for r in group if r["pauses"][label] is not None]
             balls = str(low) if low == high else f"{low}-{high}"
             lines.append(f"| {balls} | {label} | {len(done)} | {_errors(done) if done else '- | - | - | -'} |")
     return "\n".join(lines)
