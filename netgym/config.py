@@ -175,7 +175,8 @@ class SceneConfig:
     ``capture_rule`` says when a throw counts as caught: ``"held"``, the ball came in through
     the opening and is inside the net when it comes to rest or the time limit ends; ``"line"``
     (the sport's rule), the whole ball has crossed the opening's plane inside the frame,
-    decided that instant.
+    decided that instant; a ball launched in front of that plane that is wholly past it beside
+    the frame (over the bar, wide of a post) is out of play, a miss decided that instant.
     """
 
     name: str

@@ -1,5 +1,6 @@
 """Capture rules: ``held`` (the basket's: in the net when it comes to rest) and ``line`` (the
-goal's: the whole ball crossed the mouth inside the frame, decided that instant)."""
+goal's: the whole ball crossed the mouth inside the frame, decided that instant; wholly over the
+line beside the frame, it is out of play, a miss decided that instant too)."""
 
 from __future__ import annotations
 
@@ -40,6 +41,36 @@ def test_line_rule_decides_the_instant_the_whole_ball_is_over_the_line() -> None
 def test_a_ball_wide_of_the_post_is_not_over_the_line() -> None:
     result = Simulator("goal").throw([-5.0, 2.5, 1.0], [8.0, 0.0, 2.0])
     assert not result.captured
+
+
+@pytest.mark.parametrize("label, position, velocity, simulated", [
+    ("over the bar onto the roof", [-5.0, 0.3, 1.2], [8.0, 0.0, 4.7], False),
+    ("off the crossbar, up over it", [-5.0, 0.3, 1.2], [8.0, 0.0, 4.5], True),
+    ("wide of the post, past the side netting", [-5.0, 1.652, 1.0], [8.0, 0.0, 2.0], True),  # 17 mm from the post
+])
+def test_a_ball_wholly_over_the_line_beside_the_frame_is_out_of_play(label: str, position: list[float],
+                                                                     velocity: list[float], simulated: bool) -> None:
+    """As in the sport: wholly past the goal line beside the frame, the ball is out of play, a
+    miss decided that instant (it would otherwise rest on the roof, or roll about beside the
+    goal, for seconds). Full simulation to the time limit scores none of them either."""
+    sim = Simulator("goal")
+    result = sim.throw(position, velocity)
+    r = sim.model.ball_radius
+    assert not result.captured and result.reason == "out_of_play"
+    assert r <= sim.opening.depth(result.final_position) < r + (0.1 if simulated else 0.01)
+    assert not sim.opening.contains(result.final_position) or result.final_position[2] > 2.0
+    assert (result.substeps > 0) == simulated and result.time < 1.0
+    assert sim.n_balls == 0 and (simulated or not sim.awake)  # taken out; a ball flown clear leaves the net asleep
+    sim.reset()
+    full = sim.throw(position, velocity, fast=False)
+    assert not full.captured and full.reason == "time_limit"
+
+
+def test_a_ball_launched_behind_the_line_is_not_out_of_play() -> None:
+    """Only a ball launched in front of the line can go out of play over it: one launched behind
+    the goal is decided as any other miss."""
+    result = Simulator("goal").throw([2.0, 0.0, 1.0], [3.0, 0.0, 1.0])
+    assert not result.captured and result.reason == "flies_away"
 
 
 def test_a_goal_is_taken_out_and_an_untouched_goal_needs_no_pause() -> None:

@@ -140,7 +140,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``launch_noise`` | None | ``(speed, elevation, azimuth)`` standard deviations (m/s, degrees) of Gaussian noise on each release; ``info["aimed_velocity"]`` is the intended one |
     | ``feedback`` | False | append the previous throw's outcome and where it passed the opening to the observation |
     | ``randomize`` | None | domain randomisation: ``{scene field: (low, high)}`` drawn uniformly per episode (``info["scene_draws"]``; fields that change the spaces are refused at reset) |
-    | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit; caught balls stay) or ``"line"`` (goal: the whole ball crossed the mouth; the ball is then taken out) |
+    | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit; caught balls stay) or ``"line"`` (goal: the whole ball crossed the mouth inside the frame; wholly over the line beside it, out of play; the ball is then taken out) |
 
     ## Registered ids
 

@@ -4,8 +4,8 @@ A throw starts from a net at rest. Its fast path models only what the scene need
 flies in closed form while it is clear of the net, poles and other balls (the net, at rest,
 is not integrated then); once it comes near, everything is integrated with the scene's
 integrator; the throw ends as soon as its outcome is decided: the ball flies away from
-everything, cannot reach the opening any more, nor before the time limit (energy bounds), or
-is at rest. ``fast=False`` integrates everything from launch to the time limit instead, as a
+everything, cannot reach the opening any more, nor before the time limit (energy bounds), is
+at rest, or (``line`` rule) is wholly over the opening's line. ``fast=False`` integrates everything from launch to the time limit instead, as a
 reference.
 """
 
@@ -37,7 +37,8 @@ TIME_EPSILON = 1e-9          # s: instants closer than this are the same
 AIR_PIECE = 0.1              # s: longest piece of a flight through air between two clearance checks
 MISS_FILMED_AFTER_LANDING = 0.5  # s of a missed ball's flight filmed after it first lands
 LINE_TIME_TOLERANCE = 1e-4    # s: a flown ball's line decision comes at most this late
-GOAL_FILMED = 0.5             # s of a goal (line rule) filmed after it is decided, the ball running into the net
+LINE_FILMED = 0.5             # s of a ball filmed on after the line rule decided it (a goal running into the net)
+LINE_VERDICTS = {"crossed_line": True, "out_of_play": False}  # the line rule's reasons: a goal, or not
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 
 
@@ -47,14 +48,15 @@ class ThrowResult:
 
     :param captured: caught by the scene's ``capture_rule``: ``"held"``, the ball came in through
         the opening and is inside the net; ``"line"``, the whole ball crossed the opening's plane
-        inside the frame.
+        inside the frame (it is out of play, a miss, once wholly over it beside the frame).
     :param entered: the ball's centre crossed the opening inwards (and did not leave through it).
     :param final_position: ball centre when the outcome was decided (m).
     :param final_velocity: ball velocity then (m/s).
     :param time: simulated seconds from launch to the decision.
     :param substeps: integration substeps spent on the throw (0 when decided in closed form).
     :param reason: ``"flies_away"``, ``"cannot_reach_opening"``, ``"at_rest"``, ``"crossed_line"``
-        or ``"time_limit"``.
+        (a goal under ``line``), ``"out_of_play"`` (wholly over the line beside the frame, under
+        ``line``) or ``"time_limit"``.
     :param settle_substeps: integration substeps spent bringing the net to rest before the launch.
     :param settle_time: simulated seconds of that settling.
     """
@@ -116,8 +118,8 @@ class Throw:
             raise
         if self.frames is not None and result.reason == "flies_away":
             yield from self._film_miss(sim.model.n_net + ball, t_limit=start.time + sim.config.simulation.time_limit)
-        if self.frames is not None and result.reason == "crossed_line":
-            yield from self._film_goal()
+        if self.frames is not None and result.reason in LINE_VERDICTS:
+            yield from self._film_on()
         if not result.captured or sim.config.capture_rule == "line":
             self._take_out(ball)
         return dataclasses.replace(result, **settled)
@@ -159,12 +161,13 @@ class Throw:
         reference_energy = self._potential_without(row, sim.energy())
         recent: list[tuple[float, np.ndarray]] = []  # (time, positions) at the checks of the last REST_WINDOW
         line = sim.config.capture_rule == "line"
-        crossed = False
+        from_front = sim.opening.depth(s.x[row]) <= 0.0  # launched before the line: it can go out of play
+        verdict: bool | None = None  # under line: a goal (True) or out of play (False), once decided
         while True:
             if fast and not sim.awake:
-                reason = yield from self._fly(row, ball, deadline)
+                reason = yield from self._fly(row, ball, deadline, from_front)
                 if reason is not None:
-                    crossed = reason == "crossed_line"
+                    verdict = LINE_VERDICTS.get(reason)
                     break
                 sim.awake = True
                 if self._clearance(row) < 0.0:
@@ -173,9 +176,10 @@ class Throw:
                 sim.awake = True  # integration wakes the scene (full simulation integrates from the launch on)
                 request = Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
                 yield from integrate_until_stops(s, request, self.frames)
-            crossed = crossed or (line and self._crossed_line(row, ball))
-            if fast and crossed:
-                reason = "crossed_line"
+            if line and verdict is None:
+                verdict = self._line_verdict(s.x[row], bool(s.entered[ball]), from_front)
+            if fast and verdict is not None:
+                reason = "crossed_line" if verdict else "out_of_play"
                 break
             if deadline - s.time < 0.5 * cfg.dt:
                 reason = "time_limit"
@@ -192,17 +196,23 @@ class Throw:
             if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
                 sim.sleep(keep=row)
         entered = bool(s.entered[ball])
-        captured = crossed if line else entered and sim.opening.contains(s.x[row])
+        captured = bool(verdict) if line else entered and sim.opening.contains(s.x[row])
         return ThrowResult(captured=captured, entered=entered,
                            final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
                            time=s.time - t0, substeps=sim.substeps - substeps0, reason=reason)
 
-    def _crossed_line(self, row: int, ball: int) -> bool:
-        """The whole ball is past the opening's plane, having come in through the opening."""
-        sim = self.sim
-        return bool(sim.state.entered[ball]) and sim.opening.depth(sim.state.x[row]) >= sim.model.ball_radius
+    def _line_verdict(self, position: np.ndarray, entered: bool, from_front: bool) -> bool | None:
+        """The ``line`` rule's verdict on a ball at ``position``: once the whole ball is past the
+        opening's plane, True (a goal) if it came in through the frame (``entered``), False if it
+        crossed beside it (out of play, as over the bar or wide of a post in the sport; only for a
+        ball launched ``from_front`` of the line); None before."""
+        if self.sim.opening.depth(position) < self.sim.model.ball_radius:
+            return None
+        if entered:
+            return True
+        return False if from_front else None
 
-    def _fly(self, row: int, ball: int, deadline: float) -> Plan:
+    def _fly(self, row: int, ball: int, deadline: float, from_front: bool) -> Plan:
         """Move the ball on its free flight (closed form; through air, RK4) while it is clear of
         everything. Returns a decision reason, or None when the ball came close enough to need
         simulating."""
@@ -216,7 +226,11 @@ class Throw:
             if entry is None:
                 return "flies_away"
             if entry > 0.0:  # until then it is clear of everything and cannot cross the opening (inside the box)
+                if line:  # but it may pass the line beside the frame, out of play
+                    entry = self._line_instant(row, ball, entry, from_front, through_opening=False)
                 yield from self._move(row, entry, through_opening=False)
+                if line and self._line_verdict(s.x[row], bool(s.entered[ball]), from_front) is not None:
+                    return "out_of_play"
                 if deadline - s.time < 0.5 * sim.dt:
                     return "time_limit"
         while True:
@@ -227,10 +241,11 @@ class Throw:
                 return None
             tau = min(self._safe_time(row, gap), deadline - s.time)
             if line:
-                tau = self._line_instant(row, ball, tau)
+                tau = self._line_instant(row, ball, tau, from_front, through_opening=True)
             yield from self._move(row, tau, through_opening=True)
-            if line and self._crossed_line(row, ball):
-                return "crossed_line"
+            verdict = self._line_verdict(s.x[row], bool(s.entered[ball]), from_front) if line else None
+            if verdict is not None:
+                return "crossed_line" if verdict else "out_of_play"
             if deadline - s.time < 0.5 * sim.dt:
                 return "time_limit"
 
@@ -251,8 +266,9 @@ class Throw:
         if self.frames is not None:
             yield Tick()  # an instant within half a step after the flight's end: here is its nearest substep
 
-    def _line_instant(self, row: int, ball: int, tau: float) -> float:
-        """``tau``, or, if the ball in ``row`` flying for ``tau`` ends wholly over the line, the
+    def _line_instant(self, row: int, ball: int, tau: float, from_front: bool, through_opening: bool) -> float:
+        """``tau``, or, if the ball in ``row`` flying for ``tau`` ends wholly over the line (see
+        :meth:`_line_verdict`; its crossing booked only if it may pass ``through_opening``), the
         first instant it is (within LINE_TIME_TOLERANCE after it): the line rule's decision."""
         sim = self.sim
         s, n_net = sim.state, sim.model.n_net
@@ -261,8 +277,9 @@ class Throw:
         def over(t: float) -> bool:
             x, entered = s.x.copy(), s.entered.copy()
             x[row] = self._flight(*start, t)[0]
-            stepping.update_entered(x, before, n_net, entered, sim.kernel_model.opening)
-            return bool(entered[ball]) and sim.opening.depth(x[row]) >= sim.model.ball_radius
+            if through_opening:
+                stepping.update_entered(x, before, n_net, entered, sim.kernel_model.opening)
+            return self._line_verdict(x[row], bool(entered[ball]), from_front) is not None
 
         if not over(tau):
             return tau
@@ -326,14 +343,15 @@ class Throw:
         yield from self._film_flight(row, *kept, end)
         s.x[row], s.v[row], s.time = kept
 
-    def _film_goal(self) -> Plan:
-        """Film a goal on for GOAL_FILMED seconds, everything integrated (the ball runs into the
-        net), then put the scene, its time and its work counters back as decided."""
+    def _film_on(self) -> Plan:
+        """Film a ball decided over the line on for LINE_FILMED seconds, everything integrated (a
+        goal runs into the net, a ball out of play onto it or past it), then put the scene, its
+        time and its work counters back as decided."""
         sim = self.sim
         kept = sim.checkpoint()
         cfg = sim.config.simulation
         sim.awake = True
-        yield from integrate_until_stops(sim.state, Integrate(round(GOAL_FILMED / cfg.dt), sim.integrator, cfg.dt),
+        yield from integrate_until_stops(sim.state, Integrate(round(LINE_FILMED / cfg.dt), sim.integrator, cfg.dt),
                                          self.frames)
         sim.restore(kept)
 
