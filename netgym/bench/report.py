@@ -35,6 +35,7 @@ from netgym.bench.report_text import (
     HELD_AGREEMENT_TEXT,
     NATIVE_VECTOR_ENV_TEXT,
     NOTHING_TO_SETTLE_TEXT,
+    OUT_OF_PLAY_TEXT,
     PAUSE_ACCURACY_NOTES,
     PAUSE_ACCURACY_TEXT,
     PAUSE_TEXT,
@@ -154,6 +155,7 @@ def _gains(report: Report) -> list[str]:
         FLIGHT_TEXT,
         NATIVE_VECTOR_ENV_TEXT,
         CONTACT_ORDER_TEXT,
+        OUT_OF_PLAY_TEXT,
         PILE_FRICTION_TEXT,
         STATIC_PAUSE_TEXT,
     ]
