@@ -5,8 +5,8 @@ flies in closed form while it is clear of the net, poles and other balls (the ne
 is not integrated then); once it comes near, everything is integrated with the scene's
 integrator; the throw ends as soon as its outcome is decided: the ball flies away from
 everything, cannot reach the opening any more, nor before the time limit (energy bounds), is
-at rest, or (``line`` rule) is wholly over the opening's line. ``fast=False`` integrates everything from launch to the time limit instead, as a
-reference.
+at rest, or (``line`` rule) is wholly over the opening's line. ``fast=False`` integrates
+everything from launch to the time limit instead, as a reference.
 """
 
 from __future__ import annotations
@@ -177,7 +177,7 @@ class Throw:
                 request = Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
                 yield from integrate_until_stops(s, request, self.frames)
             if line and verdict is None:
-                verdict = self._line_verdict(s.x[row], bool(s.entered[ball]), from_front)
+                verdict = LINE_VERDICTS.get(self._line_reason(row, ball, from_front))
             if fast and verdict is not None:
                 reason = "crossed_line" if verdict else "out_of_play"
                 break
@@ -212,6 +212,13 @@ class Throw:
             return True
         return False if from_front else None
 
+    def _line_reason(self, row: int, ball: int, from_front: bool) -> str | None:
+        """The reason the ``line`` rule decides the ball in ``row`` now, or None (see
+        :meth:`_line_verdict`)."""
+        s = self.sim.state
+        verdict = self._line_verdict(s.x[row], bool(s.entered[ball]), from_front)
+        return None if verdict is None else "crossed_line" if verdict else "out_of_play"
+
     def _fly(self, row: int, ball: int, deadline: float, from_front: bool) -> Plan:
         """Move the ball on its free flight (closed form; through air, RK4) while it is clear of
         everything. Returns a decision reason, or None when the ball came close enough to need
@@ -229,8 +236,9 @@ class Throw:
                 if line:  # but it may pass the line beside the frame, out of play
                     entry = self._line_instant(row, ball, entry, from_front, through_opening=False)
                 yield from self._move(row, entry, through_opening=False)
-                if line and self._line_verdict(s.x[row], bool(s.entered[ball]), from_front) is not None:
-                    return "out_of_play"
+                reason = self._line_reason(row, ball, from_front) if line else None
+                if reason is not None:
+                    return reason
                 if deadline - s.time < 0.5 * sim.dt:
                     return "time_limit"
         while True:
@@ -243,9 +251,9 @@ class Throw:
             if line:
                 tau = self._line_instant(row, ball, tau, from_front, through_opening=True)
             yield from self._move(row, tau, through_opening=True)
-            verdict = self._line_verdict(s.x[row], bool(s.entered[ball]), from_front) if line else None
-            if verdict is not None:
-                return "crossed_line" if verdict else "out_of_play"
+            reason = self._line_reason(row, ball, from_front) if line else None
+            if reason is not None:
+                return reason
             if deadline - s.time < 0.5 * sim.dt:
                 return "time_limit"
 
