@@ -158,3 +158,40 @@ def test_a_ball_resting_on_a_jittering_net_is_decided_at_rest() -> None:
     s, row = sim.state, sim.model.n_net
     near = np.linalg.norm(s.x - s.x[row], axis=1) < 2.0 * sim.model.ball_radius + 0.2
     assert np.abs(s.v[near]).max() > sim.config.simulation.rest_speed  # the jitter a velocity test would wait on
+
+
+def test_the_segment_broad_phase_changes_nothing() -> None:
+    """A ball's net contacts resolved with the list of nearby segments give bitwise what testing
+    every segment gives (an unbounded reach lists every particle), on the states of a fast ball
+    hitting a loaded basket: resting balls, impacts, and impacts that move the bodies so far that
+    the list is abandoned mid-way."""
+    from netgym.physics import contacts
+
+    sim = _sim("basket")
+    for x in (-0.4, 0.3):
+        sim.throw([x, 0.2, 3.6], [0.0, 0.0, 0.0])
+    sim.launch_ball([-5.0, 0.0, 3.5], [9.0, 0.0, 0.5])  # into the far side of the net, hard
+    m, k = sim.model, sim.kernel_model
+    e, mu = k.contact[contacts.Contact.BALL_NET]
+    moves = []
+    for _ in range(200):
+        sim.step(1)
+        s = sim.state
+        for ahead in (0.0, 0.01):  # as the step left it; its balls flown on 10 ms into the net, unresolved
+            start = s.x.copy()
+            start[m.n_net:] += ahead * s.v[m.n_net:]
+            extent = contacts._segment_reach(start, k.segments)
+            for b in range(m.n_net, len(s.x)):
+                results = []
+                for reach in (extent, np.inf):
+                    x, v = start.copy(), s.v.copy()
+                    moved = contacts._ball_net(x, v, s.inv_mass, start, b, m.ball_radius, m.n_net, k.segments,
+                                               k.segment_start, k.contact, k.restitution_threshold, reach,
+                                               np.empty(m.n_net, dtype=np.int64))
+                    results.append((x, v, moved))
+                (x1, v1, moved), (x2, v2, _) = results
+                assert np.array_equal(x1, x2) and np.array_equal(v1, v2)
+                moves.append(moved)
+    moves = np.array(moves)
+    assert np.sum(moves > 0.0) > 200  # contacts resolved
+    assert np.any(moves > contacts.NEAR_MARGIN / 4)  # and the list abandoned mid-way

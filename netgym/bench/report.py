@@ -25,6 +25,7 @@ from netgym.bench.peers import peers
 from netgym.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
+    BROAD_PHASE_TEXT,
     CONTACT_ORDER_TEXT,
     CREEP_TEXT,
     EPISODES_NOTES,
@@ -156,6 +157,7 @@ def _gains(report: Report) -> list[str]:
         NATIVE_VECTOR_ENV_TEXT,
         CONTACT_ORDER_TEXT,
         OUT_OF_PLAY_TEXT,
+        BROAD_PHASE_TEXT,
         PILE_FRICTION_TEXT,
         STATIC_PAUSE_TEXT,
     ]

@@ -30,6 +30,7 @@ from netgym.physics.rows import add_scaled
 
 
 COINCIDENT = 1e-24   # m^2: squared distances below this leave no direction between two centres
+NEAR_MARGIN = 0.05   # m: slack of the segment broad phase (see _ball_net)
 
 
 @kernel
@@ -77,7 +78,8 @@ def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitu
     The normal ``n`` points from ``a`` to the point; ``depth`` is the overlap along it.
     A single body as the second side is ``i == j`` with ``t = 0``. ``start`` holds every
     body's position at the start of the substep: a resting contact (approaching no faster
-    than ``threshold``) also holds static friction on positions.
+    than ``threshold``) also holds static friction on positions. Returns a bound on how far it
+    moved any body (m).
     """
     wa = inv_mass[a]
     wi = (1.0 - t) * inv_mass[i]
@@ -85,7 +87,8 @@ def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitu
     w_point = (1.0 - t) * wi + t * wj
     total = wa + w_point
     if total <= 0.0:
-        return
+        return 0.0
+    moved = max(wa, wi, wj) / total * depth * (1.0 + friction)  # the overlap's share, then the slip undone
     # position: remove the overlap
     lam = depth / total
     add_scaled(x, a, -(wa * lam), nx, ny, nz)
@@ -108,7 +111,7 @@ def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitu
         if j != i:
             add_scaled(x, j, -(wj / total), sx, sy, sz)
     if closing >= 0.0:
-        return
+        return moved
     e = restitution if -closing > threshold else 0.0
     jn = -(1.0 + e) * closing / total
     tx = rx - closing * nx
@@ -126,6 +129,7 @@ def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitu
     add_scaled(v, i, wi, px, py, pz)
     if j != i:
         add_scaled(v, j, wj, px, py, pz)
+    return moved
 
 
 @kernel
@@ -175,26 +179,68 @@ def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
 
 
 @kernel
-def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold):
+def _segment_reach(x, segments):
+    """Largest extent of a segment along any axis (m); one running maximum per axis, three
+    independent chains."""
+    rx, ry, rz = 0.0, 0.0, 0.0
+    for s in range(segments.shape[0]):
+        i = segments[s, 0]
+        j = segments[s, 1]
+        rx = max(rx, abs(x[j, 0] - x[i, 0]))
+        ry = max(ry, abs(x[j, 1] - x[i, 1]))
+        rz = max(rz, abs(x[j, 2] - x[i, 2]))
+    return max(rx, ry, rz)
+
+
+@kernel
+def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold, reach, near):
+    """Resolve ball ``b`` against every net particle, then every segment's interior, in index
+    order. Returns how far that moved any body (a bound, m).
+
+    Broad phase for the segments: a segment touches the ball's bounding cube only if its first
+    particle lies within ``radius`` + its extent of the ball's centre along every axis. The
+    particle pass lists (in ``near``) the particles within ``radius + reach + NEAR_MARGIN``
+    (``reach``: a bound on every segment's extent when the ball's turn began), and only their
+    segments (``segments`` sorted by first particle, those of particle k at ``segment_start[k]``
+    on) are tested, in the order all of them would be. The list stays exact while this ball's
+    contacts have moved no body farther than NEAR_MARGIN / 4 in all; beyond, every remaining
+    segment is tested.
+    """
     e, mu = coef[Contact.BALL_NET, 0], coef[Contact.BALL_NET, 1]
     r2 = radius * radius
+    listed = radius + reach + NEAR_MARGIN
+    count = 0
+    moved = 0.0
     for k in range(n_net):
         dx = x[k, 0] - x[b, 0]
-        if abs(dx) >= radius:
+        if abs(dx) >= listed:
             continue
         dy = x[k, 1] - x[b, 1]
-        if abs(dy) >= radius:
-            continue
         dz = x[k, 2] - x[b, 2]
+        if abs(dy) < listed and abs(dz) < listed:
+            near[count] = k
+            count += 1
+        if abs(dx) >= radius or abs(dy) >= radius:
+            continue
         dist2 = dx * dx + dy * dy + dz * dz
         if dist2 >= r2:
             continue
         nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
-        _pair_response(x, v, inv_mass, start, b, k, k, 0.0, -nx, -ny, -nz, radius - dist,
-                       e, mu, threshold)
-    for s in range(segments.shape[0]):
+        moved += _pair_response(x, v, inv_mass, start, b, k, k, 0.0, -nx, -ny, -nz, radius - dist, e, mu, threshold)
+    from_list = 4.0 * moved <= NEAR_MARGIN  # else every segment, in order
+    n, s, end = 0, 0, 0  # next listed particle; next segment; end of the listed particle's segments
+    while True:
+        if from_list:
+            while s >= end and n < count:
+                s, end = segment_start[near[n]], segment_start[near[n] + 1]
+                n += 1
+            if s >= end:
+                break
+        elif s >= segments.shape[0]:
+            break
         i = segments[s, 0]
         j = segments[s, 1]
+        s += 1
         cx, cy, cz = x[b, 0], x[b, 1], x[b, 2]
         if (min(x[i, 0], x[j, 0]) >= cx + radius or max(x[i, 0], x[j, 0]) <= cx - radius
                 or min(x[i, 1], x[j, 1]) >= cy + radius or max(x[i, 1], x[j, 1]) <= cy - radius
@@ -216,12 +262,14 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold
         if dist2 >= r2:
             continue
         nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
-        _pair_response(x, v, inv_mass, start, b, i, j, t, -nx, -ny, -nz, radius - dist,
-                       e, mu, threshold)
+        moved += _pair_response(x, v, inv_mass, start, b, i, j, t, -nx, -ny, -nz, radius - dist, e, mu, threshold)
+        from_list = from_list and 4.0 * moved <= NEAR_MARGIN  # the segments after this one, all of them
+    return moved
 
 
 @kernel
-def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef, threshold, net_box):
+def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, segment_start, poles, coef, threshold, net_box,
+                     near):
     """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass): ball/ball
     pairs first, then each ball's poles and net, then the ground. A pair's projection pushes
     its balls along the line between them, partly along their supports; the supports' static
@@ -229,7 +277,9 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef
     supports, the pushes escaped their friction and piles crept on for good.)
 
     ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
-    sphere does not overlap it skips the particle and segment tests (broad phase).
+    sphere does not overlap it skips the particle and segment tests (broad phase); the others
+    test only the segments near them (see :func:`_ball_net`; ``segment_start``: where each
+    particle's segments begin, ``near``: scratch for ``n_net`` particle indices).
     """
     n = x.shape[0]
     reach = 2.0 * radius
@@ -244,12 +294,17 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, poles, coef
             nx, ny, nz, dist = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
             _pair_response(x, v, inv_mass, start, b, c, c, 0.0, nx, ny, nz, reach - dist,
                            coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
+    extent = -1.0  # the segments' largest extent, measured when a ball first meets the net
+    moved = 0.0  # how far the net contacts since may have moved a particle, which stretches a segment as much
     for b in range(n_net, n):
         _ball_poles(x, v, start, b, radius, poles, coef, threshold)
         if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
                 and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
                 and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
-            _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, coef, threshold)
+            if extent < 0.0:
+                extent = _segment_reach(x, segments)
+            moved += _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold,
+                               extent + 2.0 * moved, near)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
         if x[k, 2] < floor and inv_mass[k] > 0.0:

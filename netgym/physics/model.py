@@ -26,6 +26,14 @@ def ball_drag_constant(config: SceneConfig) -> float:
     return 0.5 * air.density * air.drag_coefficient * math.pi * ball.radius ** 2 / ball.mass
 
 
+def index_segments(segments: np.ndarray, n_net: int) -> tuple[np.ndarray, np.ndarray]:
+    """``segments`` in order of their first particle (a stable sort: rows already in that order
+    keep it) and where each particle's rows begin: particle k's are rows ``start[k]`` to
+    ``start[k + 1]``, which the contacts' broad phase reads."""
+    ordered = np.ascontiguousarray(segments[np.argsort(segments[:, 0], kind="stable")])
+    return ordered, np.searchsorted(ordered[:, 0], np.arange(n_net + 1)).astype(np.int64)
+
+
 class KernelModel(NamedTuple):
     """The static arrays and constants of a scene in the form the numba kernels take (one
     typed record instead of a dozen arguments). Built once per :class:`Model`."""
@@ -34,6 +42,7 @@ class KernelModel(NamedTuple):
     springs: np.ndarray
     spring_params: np.ndarray
     segments: np.ndarray
+    segment_start: np.ndarray
     poles: np.ndarray
     contact: np.ndarray
     restitution_threshold: float
@@ -68,7 +77,8 @@ class Model:
 
     ``springs`` holds particle index pairs, ``spring_params`` the columns (rest length, ks, kd).
     ``segments`` are the structural springs, against which balls collide (not only the
-    particles: springs never sink into a ball). ``poles`` rows are capsules
+    particles: springs never sink into a ball), in order of their first particle, and
+    ``segment_start`` where each particle's begin (:func:`index_segments`). ``poles`` rows are capsules
     ``(ax, ay, az, bx, by, bz, radius)``. ``contact`` rows are (restitution, friction) per
     :class:`Contact` kind. ``kernel`` is the same in the form the kernels take.
     """
@@ -81,6 +91,7 @@ class Model:
     spring_params: np.ndarray
     spring_kind: np.ndarray
     segments: np.ndarray
+    segment_start: np.ndarray
     poles: np.ndarray
     contact: np.ndarray
     restitution_threshold: float
@@ -104,6 +115,8 @@ class Model:
         poles = np.column_stack([geo.poles, np.full(len(geo.poles), config.net.pole_radius)])
         contact = np.array([[getattr(config.contact, p).restitution, getattr(config.contact, p).friction]
                             for p in Contact.labels()])
+        structural = geo.springs[geo.spring_kind == SpringKind.STRUCTURAL]
+        segments, segment_start = index_segments(structural, len(geo.positions))
         return cls(
             config=config,
             geometry=geo,
@@ -112,7 +125,8 @@ class Model:
             springs=np.ascontiguousarray(geo.springs),
             spring_params=np.ascontiguousarray(params),
             spring_kind=geo.spring_kind,
-            segments=np.ascontiguousarray(geo.springs[geo.spring_kind == SpringKind.STRUCTURAL]),
+            segments=segments,
+            segment_start=segment_start,
             poles=np.ascontiguousarray(poles),
             contact=contact,
             restitution_threshold=config.contact.restitution_threshold,
@@ -132,7 +146,7 @@ class Model:
         :func:`wavefront_order`."""
         order = wavefront_order(self.springs, self.n_net)
         springs, params = np.ascontiguousarray(self.springs[order]), np.ascontiguousarray(self.spring_params[order])
-        return KernelModel(self.n_net, springs, params, self.segments, self.poles, self.contact,
+        return KernelModel(self.n_net, springs, params, self.segments, self.segment_start, self.poles, self.contact,
                            self.restitution_threshold, self.gravity, self.drag, self.ball_radius,
                            self.opening.kernel_array(), self.ball_drag, self.wind)
 

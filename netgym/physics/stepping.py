@@ -121,7 +121,7 @@ def update_entered(x, before, n_net, entered, opening):
 
 
 @kernel
-def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds):
+def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds, near):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast; the
     only kernel that unpacks a :class:`~netgym.physics.model.KernelModel` and its
     :class:`~netgym.physics.model.Settings` for the passes of a step."""
@@ -157,8 +157,8 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, bo
         if n_balls > 0:
             _free_ball_flight(x, v, before, before_v, n_net, gravity, h, model.ball_drag, model.wind)
             _net_box(x, n_net, box)
-        resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.poles, model.contact,
-                         model.restitution_threshold, box)
+        resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.segment_start, model.poles,
+                         model.contact, model.restitution_threshold, box, near)
         update_entered(x, before, n_net, entered, model.opening)
         stats[0].substeps += 1
 
@@ -184,10 +184,11 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     before_v = np.empty((x.shape[0] - model.n_net, 3))
     box = np.empty(6)
     speeds = np.empty(model.n_net)
+    near = np.empty(model.n_net, dtype=np.int64)
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds, near)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
@@ -219,12 +220,13 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
     before_v = np.empty((x.shape[0] - model.n_net, 3))
     box = np.empty(6)
     speeds = np.empty(model.n_net)
+    near = np.empty(model.n_net, dtype=np.int64)
     memory[2] = 0.0
     memory[3] = 0.0
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds, near)
         memory[2] = i + 1
         if damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
