@@ -38,7 +38,7 @@ AIR_PIECE = 0.1              # s: longest piece of a flight through air between 
 MISS_FILMED_AFTER_LANDING = 0.5  # s of a missed ball's flight filmed after it first lands
 LINE_TIME_TOLERANCE = 1e-4    # s: a flown ball's line decision comes at most this late
 LINE_FILMED = 0.5             # s of a ball filmed on after the line rule decided it (a goal running into the net)
-LINE_VERDICTS = {"crossed_line": True, "out_of_play": False}  # the line rule's reasons: a goal, or not
+LINE_REASONS = ("crossed_line", "out_of_play")  # the line rule's decisions: a goal, a ball out of play
 SLEEP_SPEED = 1e-2            # m/s: a net (and balls in it) slower than this may stop being integrated
 
 
@@ -118,7 +118,7 @@ class Throw:
             raise
         if self.frames is not None and result.reason == "flies_away":
             yield from self._film_miss(sim.model.n_net + ball, t_limit=start.time + sim.config.simulation.time_limit)
-        if self.frames is not None and result.reason in LINE_VERDICTS:
+        if self.frames is not None and result.reason in LINE_REASONS:
             yield from self._film_on()
         if not result.captured or sim.config.capture_rule == "line":
             self._take_out(ball)
@@ -162,12 +162,12 @@ class Throw:
         recent: list[tuple[float, np.ndarray]] = []  # (time, positions) at the checks of the last REST_WINDOW
         line = sim.config.capture_rule == "line"
         from_front = sim.opening.depth(s.x[row]) <= 0.0  # launched before the line: it can go out of play
-        verdict: bool | None = None  # under line: a goal (True) or out of play (False), once decided
+        decided: str | None = None  # under line: one of LINE_REASONS, once the ball is wholly over the line
         while True:
             if fast and not sim.awake:
                 reason = yield from self._fly(row, ball, deadline, from_front)
                 if reason is not None:
-                    verdict = LINE_VERDICTS.get(reason)
+                    decided = reason if reason in LINE_REASONS else None
                     break
                 sim.awake = True
                 if self._clearance(row) < 0.0:
@@ -176,10 +176,10 @@ class Throw:
                 sim.awake = True  # integration wakes the scene (full simulation integrates from the launch on)
                 request = Integrate(min(chunk, round((deadline - s.time) / cfg.dt)), sim.integrator, cfg.dt)
                 yield from integrate_until_stops(s, request, self.frames)
-            if line and verdict is None:
-                verdict = LINE_VERDICTS.get(self._line_reason(row, ball, from_front))
-            if fast and verdict is not None:
-                reason = "crossed_line" if verdict else "out_of_play"
+            if line and decided is None:
+                decided = self._line_reason(s.x[row], bool(s.entered[ball]), from_front)
+            if fast and decided is not None:
+                reason = decided
                 break
             if deadline - s.time < 0.5 * cfg.dt:
                 reason = "time_limit"
@@ -196,28 +196,21 @@ class Throw:
             if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
                 sim.sleep(keep=row)
         entered = bool(s.entered[ball])
-        captured = bool(verdict) if line else entered and sim.opening.contains(s.x[row])
+        captured = decided == "crossed_line" if line else entered and sim.opening.contains(s.x[row])
         return ThrowResult(captured=captured, entered=entered,
                            final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
                            time=s.time - t0, substeps=sim.substeps - substeps0, reason=reason)
 
-    def _line_verdict(self, position: np.ndarray, entered: bool, from_front: bool) -> bool | None:
-        """The ``line`` rule's verdict on a ball at ``position``: once the whole ball is past the
-        opening's plane, True (a goal) if it came in through the frame (``entered``), False if it
-        crossed beside it (out of play, as over the bar or wide of a post in the sport; only for a
-        ball launched ``from_front`` of the line); None before."""
+    def _line_reason(self, position: np.ndarray, entered: bool, from_front: bool) -> str | None:
+        """The ``line`` rule's decision on a ball at ``position``: once the whole ball is past the
+        opening's plane, ``"crossed_line"`` (a goal) if it came in through the frame
+        (``entered``), ``"out_of_play"`` if it crossed beside it (as over the bar or wide of a
+        post in the sport; only for a ball launched ``from_front`` of the line); None before."""
         if self.sim.opening.depth(position) < self.sim.model.ball_radius:
             return None
         if entered:
-            return True
-        return False if from_front else None
-
-    def _line_reason(self, row: int, ball: int, from_front: bool) -> str | None:
-        """The reason the ``line`` rule decides the ball in ``row`` now, or None (see
-        :meth:`_line_verdict`)."""
-        s = self.sim.state
-        verdict = self._line_verdict(s.x[row], bool(s.entered[ball]), from_front)
-        return None if verdict is None else "crossed_line" if verdict else "out_of_play"
+            return "crossed_line"
+        return "out_of_play" if from_front else None
 
     def _fly(self, row: int, ball: int, deadline: float, from_front: bool) -> Plan:
         """Move the ball on its free flight (closed form; through air, RK4) while it is clear of
@@ -236,7 +229,7 @@ class Throw:
                 if line:  # but it may pass the line beside the frame, out of play
                     entry = self._line_instant(row, ball, entry, from_front, through_opening=False)
                 yield from self._move(row, entry, through_opening=False)
-                reason = self._line_reason(row, ball, from_front) if line else None
+                reason = self._line_reason(s.x[row], bool(s.entered[ball]), from_front) if line else None
                 if reason is not None:
                     return reason
                 if deadline - s.time < 0.5 * sim.dt:
@@ -251,7 +244,7 @@ class Throw:
             if line:
                 tau = self._line_instant(row, ball, tau, from_front, through_opening=True)
             yield from self._move(row, tau, through_opening=True)
-            reason = self._line_reason(row, ball, from_front) if line else None
+            reason = self._line_reason(s.x[row], bool(s.entered[ball]), from_front) if line else None
             if reason is not None:
                 return reason
             if deadline - s.time < 0.5 * sim.dt:
@@ -276,7 +269,7 @@ class Throw:
 
     def _line_instant(self, row: int, ball: int, tau: float, from_front: bool, through_opening: bool) -> float:
         """``tau``, or, if the ball in ``row`` flying for ``tau`` ends wholly over the line (see
-        :meth:`_line_verdict`; its crossing booked only if it may pass ``through_opening``), the
+        :meth:`_line_reason`; its crossing booked only if it may pass ``through_opening``), the
         first instant it is (within LINE_TIME_TOLERANCE after it): the line rule's decision."""
         sim = self.sim
         s, n_net = sim.state, sim.model.n_net
@@ -287,7 +280,7 @@ class Throw:
             x[row] = self._flight(*start, t)[0]
             if through_opening:
                 stepping.update_entered(x, before, n_net, entered, sim.kernel_model.opening)
-            return self._line_verdict(x[row], bool(entered[ball]), from_front) is not None
+            return self._line_reason(x[row], bool(entered[ball]), from_front) is not None
 
         if not over(tau):
             return tau
