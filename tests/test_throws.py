@@ -162,7 +162,7 @@ def test_a_ball_resting_on_a_jittering_net_is_decided_at_rest() -> None:
 
 def test_the_segment_broad_phase_changes_nothing() -> None:
     """A ball's net contacts resolved with the list of nearby segments give bitwise what testing
-    every segment gives (an unbounded reach lists every particle), on the states of a fast ball
+    every segment gives (an unbounded extent lists every particle), on the states of a fast ball
     hitting a loaded basket: resting balls, impacts, and impacts that move the bodies so far that
     the list is abandoned mid-way."""
     from netgym.physics import contacts
@@ -180,13 +180,13 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
         for ahead in (0.0, 0.01):  # as the step left it; its balls flown on 10 ms into the net, unresolved
             start = s.x.copy()
             start[m.n_net:] += ahead * s.v[m.n_net:]
-            extent = contacts._segment_reach(start, k.segments)
+            extent = contacts._segment_extent(start, k.segments)
             for b in range(m.n_net, len(s.x)):
                 results = []
-                for reach in (extent, np.inf):
+                for bound in (extent, np.inf):
                     x, v = start.copy(), s.v.copy()
                     moved = contacts._ball_net(x, v, s.inv_mass, start, b, m.ball_radius, m.n_net, k.segments,
-                                               k.segment_start, k.contact, k.restitution_threshold, reach,
+                                               k.segment_start, k.contact, k.restitution_threshold, bound,
                                                np.empty(m.n_net, dtype=np.int64))
                     results.append((x, v, moved))
                 (x1, v1, moved), (x2, v2, _) = results

@@ -179,7 +179,7 @@ def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
 
 
 @kernel
-def _segment_reach(x, segments):
+def _segment_extent(x, segments):
     """Largest extent of a segment along any axis (m); one running maximum per axis, three
     independent chains."""
     rx, ry, rz = 0.0, 0.0, 0.0
@@ -193,14 +193,14 @@ def _segment_reach(x, segments):
 
 
 @kernel
-def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold, reach, near):
+def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold, extent, near):
     """Resolve ball ``b`` against every net particle, then every segment's interior, in index
     order. Returns how far that moved any body (a bound, m).
 
     Broad phase for the segments: a segment touches the ball's bounding cube only if its first
     particle lies within ``radius`` + its extent of the ball's centre along every axis. The
-    particle pass lists (in ``near``) the particles within ``radius + reach + NEAR_MARGIN``
-    (``reach``: a bound on every segment's extent when the ball's turn began), and only their
+    particle pass lists (in ``near``) the particles within ``radius + extent + NEAR_MARGIN``
+    (``extent``: a bound on every segment's extent when the ball's turn began), and only their
     segments (``segments`` sorted by first particle, those of particle k at ``segment_start[k]``
     on) are tested, in the order all of them would be. The list stays exact while this ball's
     contacts have moved no body farther than NEAR_MARGIN / 4 in all; beyond, every remaining
@@ -208,7 +208,7 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, 
     """
     e, mu = coef[Contact.BALL_NET, 0], coef[Contact.BALL_NET, 1]
     r2 = radius * radius
-    listed = radius + reach + NEAR_MARGIN
+    listed = radius + extent + NEAR_MARGIN
     count = 0
     moved = 0.0
     for k in range(n_net):
@@ -302,7 +302,7 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, segment_sta
                 and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
                 and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
             if extent < 0.0:
-                extent = _segment_reach(x, segments)
+                extent = _segment_extent(x, segments)
             moved += _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold,
                                extent + 2.0 * moved, near)
     for k in range(n):
