@@ -121,10 +121,20 @@ def update_entered(x, before, n_net, entered, opening):
 
 
 @kernel
-def _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds, near):
+def _step_buffers(x, n_net):
+    """The scratch of :func:`_step` for a state of ``x.shape[0]`` bodies: the balls' velocities
+    at a substep's start, the net's bounding box, the net particles' speeds and the indices of
+    the particles near a ball."""
+    return np.empty((x.shape[0] - n_net, 3)), np.empty(6), np.empty(n_net), np.empty(n_net, dtype=np.int64)
+
+
+@kernel
+def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast; the
     only kernel that unpacks a :class:`~netgym.physics.model.KernelModel` and its
-    :class:`~netgym.physics.model.Settings` for the passes of a step."""
+    :class:`~netgym.physics.model.Settings` for the passes of a step; ``buffers`` from
+    :func:`_step_buffers`."""
+    before_v, box, speeds, near = buffers
     n_net, radius, gravity, drag = model.n_net, model.ball_radius, model.gravity, model.drag
     springs, params = model.springs, model.spring_params
     integrator, dt = settings.integrator, settings.dt
@@ -181,14 +191,11 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     non-finite or above ``divergence_speed`` (the state is then invalid and the caller restores
     its copy).
     """
-    before_v = np.empty((x.shape[0] - model.n_net, 3))
-    box = np.empty(6)
-    speeds = np.empty(model.n_net)
-    near = np.empty(model.n_net, dtype=np.int64)
+    buffers = _step_buffers(x, model.n_net)
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds, near)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
@@ -217,16 +224,13 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
     0.0)]: both carry the relaxation across calls. Returns OK or DIVERGED as :func:`advance` does.
     """
     window = history.shape[0]
-    before_v = np.empty((x.shape[0] - model.n_net, 3))
-    box = np.empty(6)
-    speeds = np.empty(model.n_net)
-    near = np.empty(model.n_net, dtype=np.int64)
+    buffers = _step_buffers(x, model.n_net)
     memory[2] = 0.0
     memory[3] = 0.0
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, before_v, box, speeds, near)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers)
         memory[2] = i + 1
         if damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
