@@ -13,19 +13,19 @@ from __future__ import annotations
 
 import argparse
 
-from netgym.bench.creep import creep, to_markdown
+from netgym.bench.creep import DTS, NETS, QUICK_DTS, QUICK_NETS, creep, to_markdown
 
 
 def main() -> None:
     """Parse arguments, run, print the markdown table."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="2 ms and 3 loaded nets, for smoke tests")
-    parser.add_argument("--nets", type=int, default=48, help="seeded loaded nets per dt (those of 1 ball are skipped)")
-    parser.add_argument("--dt", type=float, action="append", help="s (repeatable); default 0.002, 0.001, 0.0005")
+    parser.add_argument("--nets", type=int, default=NETS, help="seeded loaded nets per dt (those of 1 ball are skipped)")
+    parser.add_argument("--dt", type=float, action="append", help=f"s (repeatable); default {', '.join(map(str, DTS))}")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
-    dts = [2e-3] if args.quick else (args.dt or [2e-3, 1e-3, 5e-4])
-    print(to_markdown(creep(dts, 3 if args.quick else args.nets, args.seed)))
+    dts = QUICK_DTS if args.quick else (args.dt or DTS)
+    print(to_markdown(creep(dts, QUICK_NETS if args.quick else args.nets, args.seed)))
 
 
 if __name__ == "__main__":

@@ -23,6 +23,8 @@ ARRANGED = {  # label: drop positions (m), released at rest above the basket's b
 SETTLE_TIME = 6.0    # s simulated after an arranged pile is dropped, before measuring
 AFTER_PAUSE = 1.0    # s simulated after a loaded net's pause, before measuring (a pile still collapsing)
 MEASURED = 2.0       # s over which the balls' movement is measured
+DTS, NETS = (2e-3, 1e-3, 5e-4), 48        # the basket's integrator at these steps; seeded loaded nets per step
+QUICK_DTS, QUICK_NETS = (2e-3,), 3        # the same, for smoke tests
 
 
 @dataclass(frozen=True)

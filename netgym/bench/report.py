@@ -103,7 +103,8 @@ def measure(quick: bool, count: int, reference: Path | None = None) -> Report:
         "episode agreement": lambda: _agreement(quick, reference),
         "pause accuracy": lambda: pause_accuracy.to_markdown(pause_accuracy.pause_accuracy(2 if quick else 200,
                                                                                            progress=False)),
-        "pile creep": lambda: creep.to_markdown(creep.creep([2e-3] if quick else [2e-3, 1e-3, 5e-4], 3 if quick else 48,
+        "pile creep": lambda: creep.to_markdown(creep.creep(creep.QUICK_DTS if quick else creep.DTS,
+                                                            creep.QUICK_NETS if quick else creep.NETS,
                                                             progress=False)),
     }
     results = []
