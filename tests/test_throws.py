@@ -90,6 +90,17 @@ def test_a_throw_away_from_the_net_is_decided_in_closed_form() -> None:
     assert sim.n_balls == 0
 
 
+def test_a_ball_that_glances_off_and_leaves_for_good_is_decided_as_it_leaves() -> None:
+    """Up off the rim and away: once the ball is clear of the net's surroundings on a flight that
+    never comes back, the miss is decided (it was flown on to the time limit)."""
+    throw = [0.113, 3.237, 1.652], [0.02, -1.452, 8.234]
+    sim = _sim("basket")
+    result = sim.throw(*throw)
+    assert not result.captured and result.reason == "flies_away"
+    assert result.substeps > 0 and result.time < 2.0
+    assert not _sim("basket").throw(*throw, fast=False).captured
+
+
 def test_a_lob_into_the_basket_is_captured_early_and_stays() -> None:
     sim = _sim("basket")
     result = sim.throw([5.0, 0.0, 1.8], [-5.0, 0.0, 6.1])

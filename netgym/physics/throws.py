@@ -235,7 +235,7 @@ class Throw:
                 if deadline - s.time < 0.5 * sim.dt:
                     return "time_limit"
         while True:
-            if not parabola and self._never_enters(row, lo, hi, deadline - s.time):
+            if self._never_enters(row, lo, hi, deadline - s.time):  # it left the box, for good
                 return "flies_away"
             gap = self._clearance(row)
             if gap <= CLEARANCE:
