@@ -44,6 +44,16 @@ def test_python_m_netgym_reports_a_throw() -> None:
     assert "CAPTURED" in out and "substeps" in out
 
 
+def test_python_m_agents_evaluates_the_shipped_model_beside_oracle_and_random() -> None:
+    """The main job of the README's first command, on 4 episodes: each policy's capture rate,
+    its throughput timed apart from the loading of the kernels and the model."""
+    out = _run("-m", "agents", "--episodes", "4")
+    rows = {line.split("capture rate")[0].strip(): line for line in out.splitlines() if "capture rate" in line}
+    assert list(rows) == ["PPO ppo_netcatch.zip", "oracle", "random"]
+    assert "(12/12 throws" in rows["oracle"] and "loaded in" in rows["PPO ppo_netcatch.zip"]
+    assert "simulator ready in" in out and all("throws/s" in line for line in rows.values())
+
+
 def test_bench_env_quick_reports_agreement_and_throughput() -> None:
     out = _run("scripts/bench_env.py", "--quick")
     rows = [line for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
