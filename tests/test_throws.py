@@ -101,6 +101,16 @@ def test_a_ball_that_glances_off_and_leaves_for_good_is_decided_as_it_leaves() -
     assert not _sim("basket").throw(*throw, fast=False).captured
 
 
+def test_a_ball_that_stops_on_the_ground_beside_the_sleeping_net_is_decided_at_rest() -> None:
+    """Bounced and slid to a stop under the basket, clear of everything: nothing can move it any
+    more, so the miss is decided when it stops (it was flown on to the time limit)."""
+    sim = _sim("basket")
+    result = sim.throw([-3.81, -2.29, 1.78], [3.6, 1.1, 1.55])
+    assert not result.captured and result.reason == "at_rest" and result.substeps == 0
+    assert result.time < 0.5 * sim.config.simulation.time_limit and not np.any(result.final_velocity)
+    assert result.final_position[2] == sim.model.ball_radius
+
+
 def test_a_lob_into_the_basket_is_captured_early_and_stays() -> None:
     sim = _sim("basket")
     result = sim.throw([5.0, 0.0, 1.8], [-5.0, 0.0, 6.1])

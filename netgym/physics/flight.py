@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 _MAX_ARCS = 200
+STILL_SPEED = 1e-9  # m/s: a ball sliding slower than this on the ground lies still
 
 
 @dataclass(frozen=True)
@@ -91,6 +92,11 @@ def _bounce(v: np.ndarray, ground: Ground) -> np.ndarray:
 
 def _sliding(p: np.ndarray, v: np.ndarray, ground: Ground) -> bool:
     return p[2] <= ground.radius + 1e-12 and abs(v[2]) <= 1e-12
+
+
+def lies_still(p: np.ndarray, v: np.ndarray, ground: Ground) -> bool:
+    """The ball lies on the ground and has stopped sliding (to rounding: under 1 nm/s)."""
+    return _sliding(p, v, ground) and math.hypot(v[0], v[1]) < STILL_SPEED
 
 
 def _slide(p: np.ndarray, v: np.ndarray, tau: float, ground: Ground) -> tuple[np.ndarray, np.ndarray]:

@@ -237,6 +237,8 @@ class Throw:
         while True:
             if self._never_enters(row, lo, hi, deadline - s.time):  # it left the box, for good
                 return "flies_away"
+            if parabola and flight.lies_still(s.x[row], s.v[row], self.ground):
+                return "at_rest"  # beside the sleeping scene, nothing can move it any more
             gap = self._clearance(row)
             if gap <= CLEARANCE:
                 return None
