@@ -33,7 +33,7 @@ def main() -> None:
         model_path = out / "best_model.zip"
     print(f"NetCatch-v0, scene basket, {args.episodes} episodes x 3 throws, seeds 10000..{10000 + args.episodes - 1}")
     start = time.perf_counter()
-    evaluate(load_policy("random"), 1)  # compiles the kernels (or loads them from numba's cache), outside the timings
+    evaluate(load_policy("oracle"), 1)  # loads (or compiles) the kernels of throws and pauses, outside the timings
     print(f"  simulator ready in {time.perf_counter() - start:.1f} s")
     for name in (str(model_path), "oracle", "random"):
         start = time.perf_counter()

@@ -1,6 +1,6 @@
 """Whole episodes, what training pays: NetCatch-v0 step times (p50, p99, max) and throws per
-second with the ballistic oracle (every ball caught: the net fills and settles between throws)
-and with random actions, on one process, with the settling pauses booked in ``info``.
+second with the ballistic oracle and the shipped PPO model (every ball caught: the net fills and
+settles between throws) and with random actions, on one process, with the settling pauses booked in ``info``.
 
 Usage::
 
@@ -13,11 +13,26 @@ from __future__ import annotations
 
 import argparse
 
+from typing import Any
+
+from agents.policies import PRETRAINED, load_policy
 from netgym.arguments import parse_overrides
 from netgym.bench.episodes import run_episodes, to_markdown
 
-ROWS = (("basket", "oracle", 3), ("basket", "random", 3), ("basket", "oracle", 10), ("goal", "oracle", 3),
-        ("goal", "random", 3))
+SHIPPED = "shipped PPO"
+ROWS = (("basket", "oracle", 3), ("basket", SHIPPED, 3), ("basket", "random", 3), ("basket", "oracle", 10),
+        ("goal", "oracle", 3), ("goal", "random", 3))
+
+
+def _policy(name: str) -> Any:
+    """A row's policy: the shipped PPO model (None without Stable-Baselines3), else its name."""
+    if name != SHIPPED:
+        return name
+    try:
+        return load_policy(PRETRAINED)
+    except ImportError:
+        print("  (skipped: the shipped PPO model needs the [train] extra)")
+        return None
 
 
 def main() -> None:
@@ -33,8 +48,10 @@ def main() -> None:
     rows = []
     for k, (scene, policy, balls) in enumerate(ROWS):
         print(f"[{k + 1}/{len(ROWS)}] {scene}, {policy}, {balls}-ball episodes ...", flush=True)
-        for overrides in settings:
-            rows.append(run_episodes(scene, policy, max(1, episodes * 3 // balls), balls, overrides=overrides))
+        chosen = _policy(policy)
+        for overrides in [] if chosen is None else settings:
+            rows.append(run_episodes(scene, chosen, max(1, episodes * 3 // balls), balls, overrides=overrides,
+                                     label=policy))
     print(to_markdown(rows))
 
 

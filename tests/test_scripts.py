@@ -30,8 +30,9 @@ def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
 def test_bench_episodes_quick_books_the_settling_and_runs_a_candidate_beside_each_row() -> None:
     out = _run("scripts/bench_episodes.py", "--quick", "--candidate", "simulation.settle_dt=0.002")
     rows = [line.split("|") for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
-    assert len(rows) == 10
+    assert len(rows) == 12
     oracle_basket, candidate = rows[0], rows[1]
+    assert [cell.strip() for cell in rows[2][1:4]] == ["basket", "shipped PPO", "3"]  # what a trained agent pays
     assert oracle_basket[1].strip() == "basket" and candidate[1].strip() == "basket (simulation.settle_dt=0.002)"
     assert oracle_basket[2].strip() == "oracle" and oracle_basket[5].strip() == "100.0%"
     assert float(oracle_basket[6]) > 0 and oracle_basket[8].split("/")[2].strip() != "0"  # pauses happened

@@ -1,11 +1,13 @@
 """Whole episodes, as a user trains on them: the step times and throws per second of NetCatch-v0
-with the ballistic oracle (every ball caught, so the net fills and must settle between throws)
-and with random actions, the settling pauses booked in ``info``."""
+with the ballistic oracle or a trained model (every ball caught, so the net fills and must settle
+between throws) and with random actions, the settling pauses booked in ``info``."""
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -29,20 +31,30 @@ class EpisodeFigures:
     settle_share: float                           # settling substeps / all substeps
 
 
-def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int = 0,
-                 overrides: dict | None = None) -> EpisodeFigures:
-    """Time every step of ``episodes`` seeded episodes of ``balls`` throws (``policy``: ``"oracle"``
-    or ``"random"``) in ``scene`` with ``overrides``, after one warm-up episode that compiles the
-    kernels."""
+def _chooser(policy: Any, scene: str, seed: int) -> Callable[[np.ndarray], np.ndarray]:
+    """The action for an observation: random actions (seeded), the scene's ballistic oracle, or
+    the deterministic action of a model with Stable-Baselines3's ``predict``."""
+    if policy == "random":
+        rng = np.random.default_rng(seed)
+        return lambda obs: rng.uniform(-1, 1, 3).astype(np.float32)
+    model = ballistic_oracle(scene) if policy == "oracle" else policy
+    return lambda obs: model.predict(obs, deterministic=True)[0]
+
+
+def run_episodes(scene: str, policy: Any, episodes: int, balls: int, seed: int = 0,
+                 overrides: dict | None = None, label: str | None = None) -> EpisodeFigures:
+    """Time every step of ``episodes`` seeded episodes of ``balls`` throws in ``scene`` with
+    ``overrides``, after one warm-up episode that compiles the kernels. ``policy``: ``"oracle"``,
+    ``"random"`` or a trained model (anything with Stable-Baselines3's ``predict``, shown as
+    ``label``); only the steps are timed, not the policy's choice of action."""
     env = NetCatchEnv(scene=scene, balls_per_episode=balls, overrides=overrides)
-    oracle = ballistic_oracle(scene)
-    rng = np.random.default_rng(seed)
+    choose = _chooser(policy, scene, seed)
     steps, settle, total, caught = [], [], [], 0.0
     for episode in range(-1, episodes):
         obs, _ = env.reset(seed=seed + episode + 1)
         done = False
         while not done:
-            action = oracle.predict(obs)[0] if policy == "oracle" else rng.uniform(-1, 1, 3).astype(np.float32)
+            action = choose(obs)
             start = time.perf_counter()
             obs, reward, done, _, info = env.step(action)
             if episode >= 0:
@@ -51,8 +63,9 @@ def run_episodes(scene: str, policy: str, episodes: int, balls: int, seed: int =
                 total.append(info["substeps"])
                 caught += float(info["captured"])
     ms = 1e3 * np.array(steps)
-    label = f"{scene} ({describe_overrides(overrides)})" if overrides else scene
-    return EpisodeFigures(label, policy, balls, len(steps), caught / len(steps), len(steps) / float(np.sum(steps)),
+    where = f"{scene} ({describe_overrides(overrides)})" if overrides else scene
+    name = policy if isinstance(policy, str) else label or type(policy).__name__
+    return EpisodeFigures(where, name, balls, len(steps), caught / len(steps), len(steps) / float(np.sum(steps)),
                           (float(np.median(ms)), float(np.percentile(ms, 99)), float(ms.max())),
                           (float(np.median(settle)), float(np.percentile(settle, 90)), float(max(settle))),
                           float(np.sum(settle)) / max(float(np.sum(total)), 1.0))
