@@ -30,3 +30,16 @@ def survey(x, v, row, poles, box):
                 box[c] = min(box[c], x[k, c])
                 box[c + 3] = max(box[c + 3], x[k, c])
     return others
+
+
+@kernel
+def still_since(x, earlier, row, reach, bound):
+    """True if the ball in ``row`` and every body whose centre lies within ``reach`` of it now
+    moved no coordinate by ``bound`` or more between ``earlier`` and ``x``."""
+    cx, cy, cz = x[row, 0], x[row, 1], x[row, 2]
+    for k in range(x.shape[0]):
+        if (x[k, 0] - cx) ** 2 + (x[k, 1] - cy) ** 2 + (x[k, 2] - cz) ** 2 < reach * reach:
+            for c in range(3):
+                if not abs(x[k, c] - earlier[k, c]) < bound:
+                    return False
+    return True

@@ -24,7 +24,7 @@ from netgym.physics import air, contacts, flight, stepping
 from netgym.physics.frames import FrameClock
 from netgym.physics.kinds import Contact
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, integrate_until_stops
-from netgym.physics.surroundings import survey
+from netgym.physics.surroundings import still_since, survey
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator
@@ -373,9 +373,8 @@ class Throw:
         s, m = self.sim.state, self.sim.model
         if s.time - recent[0][0] < REST_WINDOW - TIME_EPSILON:
             return False
-        near = np.sum((s.x - s.x[row]) ** 2, axis=1) < (2.0 * m.ball_radius + REST_REACH) ** 2
-        now, bound = s.x[near], self.sim.config.simulation.rest_speed * REST_WINDOW
-        return all(float(np.abs(now - x[near]).max()) < bound for _, x in recent[:-1])
+        reach, bound = 2.0 * m.ball_radius + REST_REACH, self.sim.config.simulation.rest_speed * REST_WINDOW
+        return all(still_since(s.x, x, row, reach, bound) for _, x in recent[:-1])
 
     def _decided(self, row: int, reference_energy: float, at_rest: bool,
                  lo: np.ndarray, hi: np.ndarray, deadline: float) -> str | None:
