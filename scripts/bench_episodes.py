@@ -13,26 +13,8 @@ from __future__ import annotations
 
 import argparse
 
-from typing import Any
-
-from agents.policies import PRETRAINED, load_policy
 from netgym.arguments import parse_overrides
-from netgym.bench.episodes import run_episodes, to_markdown
-
-SHIPPED = "shipped PPO"
-ROWS = (("basket", "oracle", 3), ("basket", SHIPPED, 3), ("basket", "random", 3), ("basket", "oracle", 10),
-        ("goal", "oracle", 3), ("goal", "random", 3))
-
-
-def _policy(name: str) -> Any:
-    """A row's policy: the shipped PPO model (None without Stable-Baselines3), else its name."""
-    if name != SHIPPED:
-        return name
-    try:
-        return load_policy(PRETRAINED)
-    except ImportError:
-        print("  (skipped: the shipped PPO model needs the [train] extra)")
-        return None
+from netgym.bench.episodes import run_rows, to_markdown
 
 
 def main() -> None:
@@ -45,13 +27,7 @@ def main() -> None:
     args = parser.parse_args()
     episodes = 2 if args.quick else args.episodes
     settings = [None, *(parse_overrides(text) for text in args.candidate)]
-    rows = []
-    for k, (scene, policy, balls) in enumerate(ROWS):
-        print(f"[{k + 1}/{len(ROWS)}] {scene}, {policy}, {balls}-ball episodes ...", flush=True)
-        chosen = _policy(policy)
-        for overrides in [] if chosen is None else settings:
-            rows.append(run_episodes(scene, chosen, max(1, episodes * 3 // balls), balls, overrides=overrides,
-                                     label=policy))
+    rows = run_rows(episodes, settings, announce=lambda line: print(line, flush=True))
     print(to_markdown(rows))
 
 

@@ -16,6 +16,12 @@ from netgym.bench.throws import ballistic_oracle
 from netgym.envs import NetCatchEnv
 
 
+SHIPPED_PPO = "shipped PPO"
+ROWS = (("basket", "oracle", 3), ("basket", SHIPPED_PPO, 3), ("basket", "random", 3), ("basket", "oracle", 10),
+        ("goal", "oracle", 3), ("goal", "random", 3))
+"""The table's rows: scene, policy, balls per episode."""
+
+
 @dataclass(frozen=True)
 class EpisodeFigures:
     """Figures of ``throws`` steps of one policy on one scene."""
@@ -29,6 +35,35 @@ class EpisodeFigures:
     step_ms: tuple[float, float, float]           # p50, p99, max
     settle_substeps: tuple[float, float, float]   # p50, p90, max
     settle_share: float                           # settling substeps / all substeps
+
+
+def policy_of(name: str) -> Any:
+    """A row's policy: the PPO model shipped in the sibling package ``agents`` (imported on call;
+    None without Stable-Baselines3, the ``[train]`` extra), else the name (oracle, random)."""
+    if name != SHIPPED_PPO:
+        return name
+    from agents.policies import PRETRAINED, load_policy
+
+    try:
+        return load_policy(PRETRAINED)
+    except ImportError:
+        return None
+
+
+def run_rows(episodes: int, settings: list[dict | None], announce: Callable[[str], None] | None = None
+             ) -> list[EpisodeFigures]:
+    """Every row of ROWS with each scene override setting of ``settings`` (None: the default),
+    ``episodes`` x 3 / balls episodes each; ``announce`` is told each row as it starts. The
+    shipped PPO's row is left out without Stable-Baselines3."""
+    figures = []
+    for k, (scene, name, balls) in enumerate(ROWS):
+        if announce is not None:
+            announce(f"[{k + 1}/{len(ROWS)}] {scene}, {name}, {balls}-ball episodes ...")
+        policy = policy_of(name)
+        for overrides in [] if policy is None else settings:
+            figures.append(run_episodes(scene, policy, max(1, episodes * 3 // balls), balls, overrides=overrides,
+                                        label=name))
+    return figures
 
 
 def _chooser(policy: Any, scene: str, seed: int) -> Callable[[np.ndarray], np.ndarray]:

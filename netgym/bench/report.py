@@ -97,9 +97,7 @@ def measure(quick: bool, count: int, reference: Path | None = None) -> Report:
         "fast path": lambda: {label: summarise(compare(scene, sample_throws(scene, 6 if quick else 300), 1, overrides))
                               for label, (scene, overrides) in CASES.items()},
         "vector environments": lambda: env_throughput(8, 2 if quick else 30),
-        "episodes": lambda: episodes.to_markdown([
-            episodes.run_episodes(scene, policy, 2 if quick else 60, 3)
-            for scene, policy in (("basket", "oracle"), ("basket", "random"), ("goal", "oracle"))]),
+        "episodes": lambda: episodes.to_markdown(episodes.run_rows(2 if quick else 60, [None])),
         "episode agreement": lambda: _agreement(quick, reference),
         "pause accuracy": lambda: pause_accuracy.to_markdown(pause_accuracy.pause_accuracy(2 if quick else 200,
                                                                                            progress=False)),

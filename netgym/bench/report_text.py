@@ -2,8 +2,9 @@
 findings and tried-and-not-adopted changes, with their dates, that a new run of the report keeps."""
 
 
-EPISODES_TEXT = ("What training pays: whole 3-ball episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py` "
-                 "has more rows). With the oracle every ball is caught, so after every throw but an episode's last "
+EPISODES_TEXT = ("What training pays: whole episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py`), "
+                 "with the ballistic oracle, the shipped PPO model and random actions. With the oracle and the PPO "
+                 "model every ball is caught, so after every throw but an episode's last "
                  "the loaded net settles (dynamic relaxation, the net kinetically damped, IMEX Euler at "
                  "`simulation.settle_dt`, 11.5 ms on the basket: 90% of its stability limit there) until nothing has moved faster than "
                  "`simulation.settle_speed` (0.1 m/s) over the last 0.1 s; `info['settle_substeps']` books that pause "
