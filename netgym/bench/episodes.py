@@ -60,6 +60,8 @@ def run_rows(episodes: int, settings: list[dict | None], announce: Callable[[str
         if announce is not None:
             announce(f"[{k + 1}/{len(ROWS)}] {scene}, {name}, {balls}-ball episodes ...")
         policy = policy_of(name)
+        if policy is None and announce is not None:
+            announce("  left out: the shipped PPO model needs Stable-Baselines3 (the [train] extra)")
         for overrides in [] if policy is None else settings:
             figures.append(run_episodes(scene, policy, max(1, episodes * 3 // balls), balls, overrides=overrides,
                                         label=name))
