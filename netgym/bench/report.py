@@ -28,6 +28,7 @@ from netgym.bench.report_text import (
     BROAD_PHASE_TEXT,
     CONTACT_ORDER_TEXT,
     CREEP_TEXT,
+    DECIDED_EARLY_TEXT,
     EPISODES_NOTES,
     EPISODES_TEXT,
     ERROR_MODEL_TEXT,
@@ -157,6 +158,7 @@ def _gains(report: Report) -> list[str]:
         CONTACT_ORDER_TEXT,
         OUT_OF_PLAY_TEXT,
         BROAD_PHASE_TEXT,
+        DECIDED_EARLY_TEXT,
         PILE_FRICTION_TEXT,
         STATIC_PAUSE_TEXT,
     ]

@@ -88,6 +88,15 @@ BROAD_PHASE_TEXT = (
     " 42.1 -> 23.9. Whole steps of the 9-ball net (IMEX Euler, 2 ms), three runs of each code alternating, in a "
     "slow phase of the machine: 158-174 -> 143-155 us; with 1 and 3 balls the difference is within the machine's "
     "swings.")
+DECIDED_EARLY_TEXT = (
+    "- A flown ball decided as soon as nothing can change its outcome (2026-11-27): one that leaves the net's "
+    "surroundings for good after touching something (off the rim and away) is `flies_away` then, and one that "
+    "bounced and slid to a stop on the ground beside the sleeping net is `at_rest`; both were flown on to the "
+    "time limit (13% of random basket throws ended `time_limit` at 6 s simulated). On 1500 random throws per "
+    "scene (seed 5), before and after: no outcome, reward, observation or substep count changed; `time_limit` "
+    "192 -> 0 on the basket, 39 -> 0 on the goal. The rest test in one numba pass "
+    "(`surroundings.still_since`) instead of numpy indexing per record of the rest window: 92 -> 13 us a check, "
+    "bitwise the same; the goal under `held`, 40 throws alternating, 4.6-4.8 -> 5.1-5.6 throws/s.")
 NATIVE_VECTOR_ENV_TEXT = (
     "- Tried, then removed: a native vector environment (the integration of all environments of a step in one "
     "parallel numba call) and its SB3 adapter. Basket, 8 environments, noisy oracle actions, one run: 28.2 throws/s "
