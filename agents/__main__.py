@@ -37,7 +37,10 @@ def main() -> None:
     print(f"  simulator ready in {time.perf_counter() - start:.1f} s")
     for name in (str(model_path), "oracle", "random"):
         start = time.perf_counter()
-        policy = load_policy(name)
+        try:
+            policy = load_policy(name)
+        except ImportError as missing:  # the environment alone was installed, without the [train] extra
+            raise SystemExit(str(missing)) from missing
         loaded = time.perf_counter()
         label = "PPO " + Path(name).name if name.endswith(".zip") else name
         result = evaluate(policy, args.episodes, seed=10_000, progress=label)

@@ -30,8 +30,11 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO")
         raise ValueError(f"algorithm = {algorithm!r} is not one of {list(SB3_ALGORITHMS)}")
     if not Path(name).is_file():
         raise FileNotFoundError(f"policy {str(name)!r} is neither 'oracle', 'random' nor a saved model file")
-    import stable_baselines3
-
+    try:
+        import stable_baselines3
+    except ImportError as missing:
+        raise ImportError(f"loading the saved model {str(name)!r} needs Stable-Baselines3 and torch: "
+                          "pip install torch==2.13.0 && pip install -e \".[train]\"") from missing
     return getattr(stable_baselines3, algorithm.upper()).load(str(name), device="cpu")
 
 

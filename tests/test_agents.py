@@ -34,6 +34,12 @@ def test_wilson_interval_matches_known_values() -> None:
     assert low == 0.0 and high == pytest.approx(0.1611, abs=1e-4)
 
 
+def test_loading_a_model_without_stable_baselines3_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "stable_baselines3", None)  # as if the [train] extra were not installed
+    with pytest.raises(ImportError, match=r"needs Stable-Baselines3 and torch: .*\[train\]"):
+        load_policy(PRETRAINED)
+
+
 def test_train_ppo_quick_writes_a_loadable_model(tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, "scripts/train_ppo.py", "--quick", "--out", str(tmp_path)],
                           cwd=ROOT, capture_output=True, text=True, timeout=600)
