@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 from agents.evaluation import evaluate
-from agents.policies import PRETRAINED, load_policy
+from agents.policies import PRETRAINED, TRAIN_EXTRA, load_policy
 
 
 def main() -> None:
@@ -25,8 +25,10 @@ def main() -> None:
     args = parser.parse_args()
     model_path = PRETRAINED
     if args.train or not PRETRAINED.exists():
-        from agents.training import train
-
+        try:
+            from agents.training import train
+        except ImportError as missing:
+            raise SystemExit(f"training needs {TRAIN_EXTRA}") from missing
         out = Path("runs/ppo")
         print(f"training PPO for up to {args.minutes:g} min (TensorBoard logs in {out / 'tb'}) ...")
         train(out, minutes=args.minutes)

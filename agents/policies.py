@@ -17,6 +17,8 @@ PRETRAINED_WINDY_STACKED = Path(__file__).resolve().parent / "pretrained" / "ppo
 
 
 SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG")
+TRAIN_EXTRA = 'Stable-Baselines3 and torch: pip install torch==2.13.0 && pip install -e ".[train]"'
+"""What a saved model or training needs beyond the environment, and how to install it."""
 
 
 def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO") -> Policy:
@@ -33,8 +35,7 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO")
     try:
         import stable_baselines3
     except ImportError as missing:
-        raise ImportError(f"loading the saved model {str(name)!r} needs Stable-Baselines3 and torch: "
-                          "pip install torch==2.13.0 && pip install -e \".[train]\"") from missing
+        raise ImportError(f"loading the saved model {str(name)!r} needs {TRAIN_EXTRA}") from missing
     return getattr(stable_baselines3, algorithm.upper()).load(str(name), device="cpu")
 
 
