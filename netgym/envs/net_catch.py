@@ -119,11 +119,12 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     ``captured`` (bool, by the scene's ``capture_rule``), ``reason`` (how the outcome was
     decided: ``"flies_away"``, the ball left the net's surroundings for good; ``"at_rest"``;
     ``"cannot_reach_opening"``, no energy left to get it out, or in; ``"crossed_line"``, a goal,
-    and ``"out_of_play"``, under ``line``; ``"time_limit"``), ``final_position`` of the ball, ``sim_time`` (simulated seconds of the throw),
-    ``substeps`` (every integration substep the step took), split into ``throw_substeps`` and
-    ``settle_substeps`` (bringing the net and the balls in it to rest after this throw, for the
-    next one: the pause between throws, none after an episode's last throw; ``settle_time``
-    simulated seconds), ``launch_position`` and ``launch_velocity``.
+    and ``"out_of_play"``, under ``line``; ``"time_limit"``), ``final_position`` of the ball,
+    ``sim_time`` (simulated seconds of the throw), ``substeps`` (every integration substep the
+    step took), split into ``throw_substeps`` and ``settle_substeps`` (bringing the net and the
+    balls in it to rest after this throw, for the next one: the pause between throws, none after
+    an episode's last throw; ``settle_time`` simulated seconds), ``launch_position`` and
+    ``launch_velocity``.
 
     ## Arguments
 

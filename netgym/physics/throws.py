@@ -229,11 +229,9 @@ class Throw:
                 if line:  # but it may pass the line beside the frame, out of play
                     entry = self._line_instant(row, ball, entry, from_front, through_opening=False)
                 yield from self._move(row, entry, through_opening=False)
-                reason = self._line_reason(s.x[row], bool(s.entered[ball]), from_front) if line else None
+                reason = self._flown_to(row, ball, deadline, from_front)
                 if reason is not None:
                     return reason
-                if deadline - s.time < 0.5 * sim.dt:
-                    return "time_limit"
         while True:
             if self._never_enters(row, lo, hi, deadline - s.time):  # it left the box, for good
                 return "flies_away"
@@ -246,11 +244,20 @@ class Throw:
             if line:
                 tau = self._line_instant(row, ball, tau, from_front, through_opening=True)
             yield from self._move(row, tau, through_opening=True)
-            reason = self._line_reason(s.x[row], bool(s.entered[ball]), from_front) if line else None
+            reason = self._flown_to(row, ball, deadline, from_front)
             if reason is not None:
                 return reason
-            if deadline - s.time < 0.5 * sim.dt:
-                return "time_limit"
+
+    def _flown_to(self, row: int, ball: int, deadline: float, from_front: bool) -> str | None:
+        """The decision at the end of a piece of flight: the ``line`` rule's (see
+        :meth:`_line_reason`), the time limit, or None."""
+        sim = self.sim
+        s = sim.state
+        if sim.config.capture_rule == "line":
+            reason = self._line_reason(s.x[row], bool(s.entered[ball]), from_front)
+            if reason is not None:
+                return reason
+        return "time_limit" if deadline - s.time < 0.5 * sim.dt else None
 
     def _move(self, row: int, tau: float, through_opening: bool) -> Plan:
         """Fly the ball in ``row`` for ``tau`` (filmed if there are frames); if it may pass
@@ -309,10 +316,11 @@ class Throw:
         parabola (with bounces) misses it; through air, it lies outside, held by friction."""
         s, m, g = self.sim.state, self.sim.model, self.ground
         p, v = s.x[row], s.v[row]
+        if not (np.any(p < lo) or np.any(p > hi)):
+            return False  # inside it already
         if m.ball_drag == 0.0:
             return flight.entry_time(p, v, lo, hi, g, horizon) is None
-        outside = bool(np.any(p < lo) or np.any(p > hi))
-        return outside and air.held_by_friction(v, m.gravity, m.ball_drag, m.wind, g.radius, g.friction, p)
+        return air.held_by_friction(v, m.gravity, m.ball_drag, m.wind, g.radius, g.friction, p)
 
     def _safe_time(self, row: int, gap: float) -> float:
         """A time within which the ball in ``row`` cannot travel ``gap``."""
@@ -384,8 +392,7 @@ class Throw:
         sim = self.sim
         s, m = sim.state, sim.model
         p = s.x[row]
-        outside = bool(np.any(p < lo) or np.any(p > hi))
-        if outside and self._never_enters(row, lo, hi, math.inf):
+        if self._never_enters(row, lo, hi, math.inf):
             return "flies_away"
         if at_rest:
             return "at_rest"
