@@ -20,7 +20,8 @@ def main() -> None:
     """Parse arguments, run, print the markdown table."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="2 ms and 3 loaded nets, for smoke tests")
-    parser.add_argument("--nets", type=int, default=NETS, help="seeded loaded nets per dt (those of 1 ball are skipped)")
+    parser.add_argument("--nets", type=int, default=NETS,
+                        help="seeded loaded nets per dt (those of 1 ball are skipped)")
     parser.add_argument("--dt", type=float, action="append", help=f"s (repeatable); default {', '.join(map(str, DTS))}")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
