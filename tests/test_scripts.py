@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -156,3 +157,18 @@ def test_pile_creep_quick_measures_every_arranged_pile_and_the_loaded_nets() -> 
     assert 1 <= loaded <= 3
     p50, p90, worst = (float(v) for v in row[3 + len(ARRANGED)].split("/"))
     assert 0.0 <= p50 <= p90 <= worst
+
+
+def test_held_goal_phases_quick_times_each_capture_before_its_decision() -> None:
+    out = _run("scripts/held_goal_phases.py", "--quick").splitlines()
+    captured = int(out[0].split()[0])
+    assert captured >= 1 and out[0].endswith(")")  # seed 3's six throws hold captures, reasons counted
+    figures = {line.split(":")[0]: [float(v) for v in re.findall(r"(?:p50|p90|max) ([0-9.]+)", line)]
+               for line in out[1:]}
+    assert len(figures) == 4
+    for p50, p90, top in figures.values():
+        assert 0.0 <= p50 <= p90 <= top
+    decided = figures["decided after"]
+    moving = next(v for k, v in figures.items() if k.startswith("ball's horizontal motion ended"))
+    bouncing = figures["ball last off the floor (bouncing in place) at"]
+    assert moving[2] <= decided[2] and bouncing[2] <= decided[2]  # nothing is sampled after the decision
