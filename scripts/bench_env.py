@@ -9,9 +9,14 @@ so that captures, rim hits and misses all occur. Each throw starts from the empt
 and is simulated twice: ``fast=True`` (closed-form flight, sleeping net, early decision) and
 ``fast=False`` (everything integrated from launch to the time limit).
 
+With ``--reference-dt`` every throw is also simulated fully at that finer step, and the table
+says how often the fast path and the full simulation at the scene's own step agree with that
+converged outcome (``--case`` picks the cases to run, and leaves out the vector environments).
+
 Usage::
 
     python scripts/bench_env.py                 # 1000 throws per scene, both cores
+    python scripts/bench_env.py --throws 300 --case "goal, held" --reference-dt 0.0001   # ~10 min
     python scripts/bench_env.py --quick         # a few throws, for CI smoke tests
 """
 
@@ -30,20 +35,29 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="a few throws, for smoke tests")
     parser.add_argument("--throws", type=int, default=1000)
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--case", action="append", choices=list(CASES), metavar="CASE",
+                        help=f"run only this case (repeatable; one of {', '.join(repr(c) for c in CASES)})")
+    parser.add_argument("--reference-dt", type=float, help="also simulate every throw fully at this step (s)")
     args = parser.parse_args()
     count = 6 if args.quick else args.throws
+    reference = "" if args.reference_dt is None else \
+        f" fast agrees with full at {args.reference_dt:g} s | full agrees with it |"
     print("| scene | throws | outcome agreement | captured | fast throws/s | full throws/s | speed-up | "
-          "throws touching the net | fast throws/s on those |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for label, (scene, overrides) in CASES.items():
-        s = summarise(compare(scene, sample_throws(scene, count), 1 if args.quick else args.workers, overrides))
+          f"throws touching the net | fast throws/s on those |{reference}")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|" + ("---:|---:|" if reference else ""))
+    for label in args.case or CASES:
+        scene, overrides = CASES[label]
+        s = summarise(compare(scene, sample_throws(scene, count), 1 if args.quick else args.workers, overrides,
+                              args.reference_dt))
         print(f"| {label} | {s['throws']} | {100 * s['agreement']:.1f}% | {100 * s['captured']:.0f}% | "
               f"{s['fast_throws_per_s']:.1f} | {s['full_throws_per_s']:.2f} | "
               f"{s['fast_throws_per_s'] / s['full_throws_per_s']:.0f}x | {s['touching']} | "
-              f"{s['fast_touching_throws_per_s']:.1f} |")
-    print("\n| 8 environments (basket, noisy oracle actions) | env steps/s |\n|---|---:|")
-    for kind, rate in env_throughput(8, 2 if args.quick else 30).items():
-        print(f"| {SETUPS[kind]} | {rate:.1f} |")
+              f"{s['fast_touching_throws_per_s']:.1f} |"
+              + (f" {100 * s['fast_vs_reference']:.1f}% | {100 * s['full_vs_reference']:.1f}% |" if reference else ""))
+    if args.case is None:
+        print("\n| 8 environments (basket, noisy oracle actions) | env steps/s |\n|---|---:|")
+        for kind, rate in env_throughput(8, 2 if args.quick else 30).items():
+            print(f"| {SETUPS[kind]} | {rate:.1f} |")
     print("\n(per-process figures; agreement and full-simulation runs use "
           f"{1 if args.quick else args.workers} process(es))")
 

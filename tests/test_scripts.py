@@ -66,6 +66,15 @@ def test_bench_env_quick_reports_agreement_and_throughput() -> None:
     assert len(rates) == len(SETUPS) and all(float(r[2]) > 0 for r in rates)
 
 
+def test_bench_env_quick_compares_one_case_with_a_finer_reference() -> None:
+    out = _run("scripts/bench_env.py", "--quick", "--case", "goal, held", "--reference-dt", "0.00025")
+    header, _, row = [line.split("|") for line in out.splitlines() if line.startswith("|")][:3]
+    assert header[-3].strip() == "fast agrees with full at 0.00025 s" and row[1].strip() == "goal, held"
+    for cell in row[-3:-1]:
+        assert 0.0 <= float(cell.strip().rstrip("%")) <= 100.0
+    assert "env steps/s" not in out  # one case asked for: the vector environments are left out
+
+
 def test_render_throw_writes_a_gif(tmp_path) -> None:
     from PIL import Image
 

@@ -28,11 +28,18 @@ class Outcome:
     fast_seconds: float
     full_seconds: float
     touched: bool  # the fast path had to integrate (the ball came near the net or poles)
+    reference_captured: bool | None = None  # full simulation at the reference dt, when one was asked for
 
 
-def _simulate(args: tuple[str, dict | None, list[Throw]]) -> list[Outcome]:
-    scene, overrides, throws = args
+def _reference_overrides(overrides: dict | None, reference_dt: float) -> dict:
+    """The reference's scene overrides: the comparison's own, at ``reference_dt``."""
+    return {**(overrides or {}), "simulation.dt": reference_dt}
+
+
+def _simulate(args: tuple[str, dict | None, list[Throw], float | None]) -> list[Outcome]:
+    scene, overrides, throws, reference_dt = args
     sim = Simulator(scene, overrides)
+    fine = None if reference_dt is None else Simulator(scene, _reference_overrides(overrides, reference_dt))
     out = []
     for position, velocity in throws:
         sim.reset()
@@ -42,27 +49,37 @@ def _simulate(args: tuple[str, dict | None, list[Throw]]) -> list[Outcome]:
         sim.reset()
         start = time.perf_counter()
         full = sim.throw(position, velocity, fast=False)
-        out.append(Outcome(fast.captured, full.captured, fast_seconds, time.perf_counter() - start, fast.substeps > 0))
+        full_seconds = time.perf_counter() - start
+        reference = None
+        if fine is not None:
+            fine.reset()
+            reference = fine.throw(position, velocity, fast=False).captured
+        out.append(Outcome(fast.captured, full.captured, fast_seconds, full_seconds, fast.substeps > 0, reference))
     return out
 
 
-def compare(scene: str, throws: list[Throw], workers: int = 1, overrides: dict | None = None) -> list[Outcome]:
+def compare(scene: str, throws: list[Throw], workers: int = 1, overrides: dict | None = None,
+            reference_dt: float | None = None) -> list[Outcome]:
     """Simulate every throw fast and fully, on ``workers`` processes (forked after compiling),
-    in the scene with ``overrides`` (e.g. ``{"capture_rule": "held"}``)."""
+    in the scene with ``overrides`` (e.g. ``{"capture_rule": "held"}``); with ``reference_dt``,
+    also fully at that (finer) step: how near the converged outcome each way comes."""
     Simulator(scene, overrides).throw(*throws[0])  # compile and settle before forking
+    if reference_dt is not None:
+        Simulator(scene, _reference_overrides(overrides, reference_dt))  # its net settles once, before forking
     if workers == 1:
-        return _simulate((scene, overrides, throws))
-    chunks = [(scene, overrides, throws[i::workers]) for i in range(workers)]
+        return _simulate((scene, overrides, throws, reference_dt))
+    chunks = [(scene, overrides, throws[i::workers], reference_dt) for i in range(workers)]
     with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
         parts = list(pool.map(_simulate, chunks))
     return [o for part in parts for o in part]
 
 
 def summarise(outcomes: list[Outcome]) -> dict[str, float]:
-    """Agreement and throughput figures of a comparison."""
+    """Agreement and throughput figures of a comparison (with a reference: the fast path's and
+    the full simulation's agreement with it too)."""
     n = len(outcomes)
     touched = [o for o in outcomes if o.touched]
-    return {
+    figures = {
         "throws": n,
         "agreement": sum(o.fast_captured == o.full_captured for o in outcomes) / n,
         "captured": sum(o.full_captured for o in outcomes) / n,
@@ -71,3 +88,7 @@ def summarise(outcomes: list[Outcome]) -> dict[str, float]:
         "touching": len(touched),
         "fast_touching_throws_per_s": len(touched) / max(sum(o.fast_seconds for o in touched), 1e-12),
     }
+    if all(o.reference_captured is not None for o in outcomes):
+        figures["fast_vs_reference"] = sum(o.fast_captured == o.reference_captured for o in outcomes) / n
+        figures["full_vs_reference"] = sum(o.full_captured == o.reference_captured for o in outcomes) / n
+    return figures
