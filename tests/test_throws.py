@@ -216,3 +216,26 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
     moves = np.array(moves)
     assert np.sum(moves > 0.0) > 200  # contacts resolved
     assert np.any(moves > contacts.NEAR_MARGIN / 4)  # and the list abandoned mid-way
+
+
+def test_the_fast_path_integrates_on_the_full_simulations_step_grid() -> None:
+    """The ball flies in closed form to whole steps after the launch only, so that where the fast
+    path integrates it takes the full simulation's own steps: every integration request of these
+    throws into the held goal that touch the net ends a whole number of steps after the
+    launch, and each throw's outcome is the full simulation's."""
+    from netgym.bench.throws import sample_throws
+
+    sim = Simulator("goal", {"capture_rule": "held"})
+    touching = 0
+    for position, velocity in sample_throws("goal", 6, seed=3):
+        sim.reset()
+        launched, ends = sim.state.time, []
+        fast = sim.throw(position, velocity, observer=lambda s: ends.append(s.state.time - launched))
+        if fast.substeps == 0:
+            continue  # decided in closed form: nothing integrated
+        touching += 1
+        steps = np.array(ends) / sim.dt
+        assert np.abs(steps - np.round(steps)).max() < 1e-6
+        sim.reset()
+        assert sim.throw(position, velocity, fast=False).captured == fast.captured
+    assert touching >= 4

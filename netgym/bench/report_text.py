@@ -141,22 +141,21 @@ FAST_PATH_TEXT = (
     "of one run only.")
 
 HELD_AGREEMENT_TEXT = (
-    "Under `held` the goal agreed in 98.7% on 2026-11-27 (4 of 300 throws differed). Against a converged "
-    "reference, the full simulation at 0.1 ms (`python scripts/bench_env.py --throws 300 --case \"goal, held\" "
-    "--reference-dt 0.0001`, 2026-11-27), the fast path is right on 296 of the 300 (98.7%), the full "
-    "simulation at the scene's own 0.5 ms on 298 (99.3%), and at 0.25 ms on 299: the default step's own "
-    "outcomes fall short of 99.5%. The throws that differ are balls that come back off the back netting "
-    "towards the line and come to rest near it, on one side or the other, and which side depends on the "
-    "phase of the 0.5 ms steps when the ball meets the net: the fast path flies the ball in closed form and "
-    "integrates from where it comes near, between two of the full simulation's steps (the full simulation "
-    "too flies balls exactly between contacts); the full simulation itself at a 0.1% longer step, 0.5005 ms, "
-    "changes its outcome on 3 of the 300, three of the fast path's four (177, 201, 243). Throw 177: at rest 3 cm inside the "
-    "line on the fast path, 0.7 cm outside at 0.5 ms, 1.6 m outside at 0.25 ms, 1.8 m at 0.1 and 0.05 ms. "
-    "Continued in full from where the fast path decided them, its three captures among the four keep their "
-    "ball inside the goal to the time limit: each decision is right for the trajectory it was made on. "
-"The slack goal net lying on the ground also rests in many shapes: the full "
-    "simulation changes its outcome on 13 of these 300 throws when it starts from the goal net settled at "
-    "another pause step (1.8 ms against 3.9 ms; the two nets lie 41 mm RMS apart).")
+    "Under `held` the goal agrees in 100.0% (300 of 300 throws) since the fast path came to integrate on the "
+    "full simulation's step grid (2026-11-27): it flies the ball in closed form to whole steps after the "
+    "launch only, so that where it integrates it takes the very steps the full simulation takes. Before, it "
+    "integrated from wherever the ball came near, between two of those steps, and agreed in 98.7% (4 of 300 "
+    "differed). Against a converged reference, the full simulation at 0.1 ms (`python scripts/bench_env.py "
+    "--throws 300 --case \"goal, held\" --reference-dt 0.0001`), the fast path and the full simulation at the "
+    "scene's own 0.5 ms are both right on 298 of the 300 (99.3%; the full simulation at 0.25 ms on 299): what "
+    "remains is the step's own error. The throws that had differed are balls that come back off the back "
+    "netting towards the line and come to rest near it, and which side depends on the phase of the 0.5 ms "
+    "steps when the ball meets the net: the full simulation itself at a 0.1% longer step, 0.5005 ms, changes "
+    "its outcome on 3 of the 300, three of those four (throw 177: at rest 3 cm inside the line on the earlier "
+    "fast path, 0.7 cm outside at 0.5 ms, 1.6 m outside at 0.25 ms, 1.8 m at 0.1 and 0.05 ms). The slack goal "
+    "net lying on the ground also rests in many shapes: the full simulation changes its outcome on 13 of these "
+    "300 throws when it starts from the goal net settled at another pause step (1.8 ms against 3.9 ms; the two "
+    "nets lie 41 mm RMS apart).")
 
 SUBSTEPS_TEXT = (
     "- Substeps only where a ball is near: a free-flying or far ball adds no substeps; the relative-speed "

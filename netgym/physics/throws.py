@@ -2,8 +2,9 @@
 
 A throw starts from a net at rest. Its fast path models only what the scene needs: the ball
 flies in closed form while it is clear of the net, poles and other balls (the net, at rest,
-is not integrated then); once it comes near, everything is integrated with the scene's
-integrator; the throw ends as soon as its outcome is decided: the ball flies away from
+is not integrated then), to whole steps after the launch; once it comes near, everything is
+integrated with the scene's integrator, so on the very steps the full simulation takes; the
+throw ends as soon as its outcome is decided: the ball flies away from
 everything, cannot reach the opening any more, nor before the time limit (energy bounds), is
 at rest, or (``line`` rule) is wholly over the opening's line. ``fast=False`` integrates
 everything from launch to the time limit instead, as a reference.
@@ -96,6 +97,7 @@ class Throw:
         self.frames = frames
         self.settle_frames = settle_frames
         m = sim.model
+        self.launched = 0.0  # simulated time of the launch: the origin of the full simulation's step grid
         self.ground = flight.Ground(m.ball_radius, m.gravity, m.contact[Contact.BALL_GROUND, 0],
                                     m.contact[Contact.BALL_GROUND, 1], m.restitution_threshold)
 
@@ -156,6 +158,7 @@ class Throw:
         m, s, cfg = sim.model, sim.state, sim.config.simulation
         row = m.n_net + ball
         t0, substeps0 = s.time, sim.substeps
+        self.launched = t0
         deadline = t0 + cfg.time_limit
         chunk = max(1, round(CHUNK_SECONDS / cfg.dt))
         reference_energy = self._potential_without(row, sim.energy())
@@ -193,7 +196,7 @@ class Throw:
             reason = self._decided(row, reference_energy, self._at_rest(row, recent), lo, hi, deadline)
             if reason is not None:
                 break
-            if others < SLEEP_SPEED and self._clearance(row) > CLEARANCE:
+            if others < SLEEP_SPEED and self._flight_time(row, deadline) > 0.0:
                 sim.sleep(keep=row)
         entered = bool(s.entered[ball])
         captured = decided == "crossed_line" if line else entered and sim.opening.contains(s.x[row])
@@ -225,6 +228,7 @@ class Throw:
             entry = flight.entry_time(s.x[row], s.v[row], lo, hi, self.ground, deadline - s.time)
             if entry is None:
                 return "flies_away"
+            entry = self._on_step_grid(entry)
             if entry > 0.0:  # until then it is clear of everything and cannot cross the opening (inside the box)
                 if line:  # but it may pass the line beside the frame, out of play
                     entry = self._line_instant(row, ball, entry, from_front, through_opening=False)
@@ -237,10 +241,9 @@ class Throw:
                 return "flies_away"
             if parabola and flight.lies_still(s.x[row], s.v[row], self.ground):
                 return "at_rest"  # beside the sleeping scene, nothing can move it any more
-            gap = self._clearance(row)
-            if gap <= CLEARANCE:
-                return None
-            tau = min(self._safe_time(row, gap), deadline - s.time)
+            tau = self._flight_time(row, deadline)
+            if tau <= 0.0:
+                return None  # near something: integrate from here (on the full simulation's step grid)
             if line:
                 tau = self._line_instant(row, ball, tau, from_front, through_opening=True)
             yield from self._move(row, tau, through_opening=True)
@@ -310,6 +313,23 @@ class Throw:
         air.fly(p, u, tau, m.gravity, m.ball_drag, m.wind, g.radius, g.restitution, g.friction, g.threshold,
                 air.MAX_FLIGHT_STEP)
         return p, u
+
+    def _flight_time(self, row: int, deadline: float) -> float:
+        """How long the ball in ``row`` can fly in closed form from now, clear of everything and
+        at most to ``deadline``, ending on the full simulation's step grid; 0.0 if it cannot fly
+        to the next step there, and must be simulated."""
+        gap = self._clearance(row)
+        if gap <= CLEARANCE:
+            return 0.0
+        return self._on_step_grid(min(self._safe_time(row, gap), deadline - self.sim.state.time))
+
+    def _on_step_grid(self, tau: float) -> float:
+        """The longest flight of at most ``tau`` from now that ends on the step grid of the full
+        simulation (the launch plus whole steps of the scene's dt), or 0.0: where the fast path
+        integrates, it then takes the steps the full simulation takes there."""
+        dt, now = self.sim.config.simulation.dt, self.sim.state.time
+        steps = math.floor((now + tau - self.launched) / dt + 1e-9)
+        return max(0.0, self.launched + steps * dt - now)
 
     def _never_enters(self, row: int, lo: np.ndarray, hi: np.ndarray, horizon: float) -> bool:
         """The ball in ``row`` cannot come into the box ``lo``..``hi`` within ``horizon``: its
