@@ -1,0 +1,145 @@
+"""Env cards: one docs page per registered NetCatch id, generated from the env class's docstring
+and the id's registration (``netgym.ENVIRONMENTS`` and Gymnasium's spec), as Gymnasium generates
+its environment pages (``docs/_scripts/gen_mds.py`` there), and committed under
+``docs/environments/`` so that they read on the repository's pages too. The docs build
+(``mkdocs_hooks.py``) and the tests fail when a card is missing or differs from what this script
+makes, so a new id gets its page and no card drifts from the code it describes.
+
+Usage::
+
+    python docs/_scripts/env_cards.py      # write every card
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+import sys
+from pathlib import Path
+
+import gymnasium as gym
+
+DOCS = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(DOCS.parent), str(DOCS / "_scripts")]
+
+import netgym  # noqa: E402
+from netgym.envs import NetCatchEnv  # noqa: E402
+from netgym.wrappers import ThrowerView  # noqa: E402
+from quotes import environments  # noqa: E402
+
+SECTIONS = ("Description", "Action Space", "Observation Space", "Rewards", "Starting State", "Episode End",
+            "Arguments", "Version History")
+"""Gymnasium's sections of an environment page, in its order."""
+
+POSTERS = DOCS / "figures" / "envs"
+"""Where each id's poster lies (``ID.png``), written by ``scripts/render_posters.py``."""
+
+_ROLE = re.compile(r":(?:class|mod|func|meth|data|attr):`~?([\w.]+)`")
+
+
+def _markdown(text: str) -> str:
+    """Docstring text as markdown: Sphinx roles become code spans of the name's last part."""
+    return _ROLE.sub(lambda m: f"`{m.group(1).rsplit('.', 1)[-1]}`", text)
+
+
+def docstring_sections(cls: type) -> dict[str, str]:
+    """The ``## Heading`` sections of ``cls``'s docstring by title-cased heading; the text before
+    the first heading is ``"Description"``."""
+    sections: dict[str, str] = {}
+    heading, lines = "Description", []
+    for line in inspect.getdoc(cls).splitlines():
+        if line.startswith("## "):
+            sections[heading] = "\n".join(lines).strip()
+            heading, lines = line[3:].strip().title(), []
+        else:
+            lines.append(line)
+    sections[heading] = "\n".join(lines).strip()
+    return {name: _markdown(text) for name, text in sections.items()}
+
+
+def _kwargs_text(kwargs: dict) -> str:
+    if not kwargs:
+        return "none: every argument at its default below."
+    return ", ".join(f"`{name}={value!r}`" for name, value in kwargs.items())
+
+
+def env_card(env_id: str) -> str:
+    """The markdown page of ``env_id``: a header table, the poster and Gymnasium's eight sections."""
+    entry, spec = netgym.ENVIRONMENTS[env_id], gym.spec(env_id)
+    env = gym.make(env_id)
+    docs = docstring_sections(NetCatchEnv)
+    missing = [name for name in SECTIONS if name not in docs and name != "Description"]
+    if missing:
+        raise ValueError(f"NetCatchEnv's docstring has no section {missing}: every env card needs them")
+    observation = docs["Observation Space"]
+    if any(isinstance(wrapper, ThrowerView) for wrapper in _wrappers(env)):
+        observation = _markdown(inspect.getdoc(ThrowerView)) + "\n\nThe vector observation it replaces:\n\n" + observation
+    poster = POSTERS / f"{env_id}.png"
+    if not poster.is_file():
+        raise FileNotFoundError(f"{env_id} has no poster {poster}: run python scripts/render_posters.py")
+    balls = netgym.balls_per_episode(env_id)
+    lines = [
+        f"# {env_id}", "",
+        f"![{env_id}](../figures/envs/{env_id}.png)", "",
+        "| | |", "|---|---|",
+        f"| Make | `gymnasium.make(\"{env_id}\")` |",
+        f"| Tests | {entry.tests} |",
+        f"| Action Space | `{env.action_space}` |",
+        f"| Observation Space | `Box(shape={env.observation_space.shape}, dtype={env.observation_space.dtype})`: "
+        f"{entry.observation} |",
+        f"| Balls per episode | {balls} |",
+        f"| Reward threshold | {spec.reward_threshold} |",
+        f"| Registered with | {_kwargs_text(entry.kwargs)} |",
+        f"| Entry point | `{spec.entry_point}` |", "",
+        "## Description", "", f"**{env_id}**: {entry.tests}.", "", docs["Description"], "",
+        "## Action Space", "", docs["Action Space"], "",
+        "## Observation Space", "", observation, "",
+        "## Rewards", "", docs["Rewards"], "",
+        "## Starting State", "", docs["Starting State"], "",
+        "## Episode End", "", docs["Episode End"], "",
+        "## Info", "", docs.get("Info", ""), "",
+        "## Arguments", "", f"This id is registered with {_kwargs_text(entry.kwargs)} Any argument below can be "
+        f"passed to `gymnasium.make(\"{env_id}\", ...)`.", "", docs["Arguments"], "",
+        "## Version History", "", docs["Version History"], "",
+    ]
+    env.close()
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def _wrappers(env: gym.Env) -> list[gym.Env]:
+    chain = []
+    while isinstance(env, gym.Wrapper):
+        chain.append(env)
+        env = env.env
+    return chain
+
+
+def index_page() -> str:
+    """The environments' index: one line per id (the README's table, linked from here)."""
+    return ("# Environments\n\nEvery id netgym registers; each has a card with Gymnasium's sections.\n\n"
+            + environments(cards="") + "\n")
+
+
+def env_pages() -> dict[str, str]:
+    """Every generated page, by its path under ``docs/``."""
+    pages = {"environments/index.md": index_page()}
+    pages.update({f"environments/{env_id}.md": env_card(env_id) for env_id in netgym.ENVIRONMENTS})
+    return pages
+
+
+def stale_pages() -> list[str]:
+    """The generated pages that are missing under ``docs/`` or differ from what this script makes."""
+    return [path for path, text in env_pages().items()
+            if not (DOCS / path).is_file() or (DOCS / path).read_text() != text]
+
+
+def main() -> None:
+    """Write every card and the index."""
+    for path, text in env_pages().items():
+        (DOCS / path).parent.mkdir(parents=True, exist_ok=True)
+        (DOCS / path).write_text(text)
+    print(f"wrote {len(netgym.ENVIRONMENTS)} env cards and their index to {DOCS / 'environments'}")
+
+
+if __name__ == "__main__":
+    main()

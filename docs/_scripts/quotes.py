@@ -1,0 +1,250 @@
+"""The quoted figures of the README and the docs, generated from their result files.
+
+Each quoted table sits between ``<!-- quote:NAME -->`` and ``<!-- /quote:NAME -->`` in a markdown
+file; :data:`BLOCKS` says how NAME is made from the result files (``docs/results/*.json``, each
+written by the script that measured it, and the files other scripts write: the training curve's
+CSV, the report). ``python docs/_scripts/quotes.py`` rewrites every block; ``--check`` only says
+which differ (the tests run it), so a quoted figure cannot drift from its source.
+
+Usage::
+
+    python docs/_scripts/quotes.py            # rewrite the quoted blocks
+    python docs/_scripts/quotes.py --check    # exit 1 naming every block that is out of date
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import re
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+import netgym  # noqa: E402
+from netgym.bench.results import RESULTS, read_results  # noqa: E402
+
+REPORT = "docs/BENCHMARKS.md"
+TRAINING_CURVE = ROOT / "docs" / "figures" / "ppo_curve.csv"
+SHIPPED_PPO = "PPO ppo_netcatch.zip"
+
+
+def _rate(row: dict) -> str:
+    return f"{100 * row['captured'] / row['throws']:.1f}%"
+
+
+def _interval(row: dict) -> str:
+    return f"{100 * row['low']:.1f}-{100 * row['high']:.1f}%"
+
+
+def environments(cards: str = "docs/environments/") -> str:
+    """One line per registered id, linked to its card in the folder ``cards``: what it tests, balls
+    per episode, what the observation adds."""
+    lines = ["| id | tests | balls | observation |", "|---|---|---:|---|"]
+    lines += [f"| [`{env_id}`]({cards}{env_id}.md) | {entry.tests} | "
+              f"{netgym.balls_per_episode(env_id)} | {entry.observation} |"
+              for env_id, entry in netgym.ENVIRONMENTS.items()]
+    return "\n".join(lines)
+
+
+def capture_rates() -> str:
+    """The capture rates of the shipped PPO model, the oracle and random actions on NetCatch-v0."""
+    record = read_results(RESULTS / "agents.json")
+    figures = record["figures"]
+    lines = [f"| policy | capture rate | 95% CI | throws caught ({figures['episodes']} seeded episodes) |",
+             "|---|---:|---:|---:|"]
+    for label, row in figures["policies"].items():
+        name = "shipped PPO model" if label == SHIPPED_PPO else label
+        lines.append(f"| {name} | {_rate(row)} | {_interval(row)} | {row['captured']}/{row['throws']} |")
+    lines.append(f"\nSource: `docs/results/agents.json`, written by `{record['command']}`.")
+    return "\n".join(lines)
+
+
+def variants() -> str:
+    """The capture rates of the reference agents on the variants, with their intervals and speed."""
+    record = read_results(RESULTS / "variants.json")
+    figures = record["figures"]
+    lines = [f"| variant | agent | capture rate | 95% CI | throws caught ({figures['episodes']} episodes) | "
+             "throws/s (one process) |", "|---|---|---:|---:|---:|---:|"]
+    lines += [f"| {row['variant']} | {row['agent']} | {_rate(row)} | {_interval(row)} | "
+              f"{row['captured']}/{row['throws']} | {row['throws_per_s']:.1f} |" for row in figures["rows"]]
+    lines.append(f"\nSource: `docs/results/variants.json`, written by `{record['command']}` "
+                 f"({record['written']}, {record['machine']}).")
+    return "\n".join(lines)
+
+
+def learning_curve(name: str, checkpoints: tuple[int, ...] = (0, 4096, 8192, 12288, 16384, 24576)) -> str:
+    """The evaluated capture rate of every seed of a training curve (``docs/figures/NAME.csv``, as
+    ``scripts/train_ppo.py`` writes it) at ``checkpoints`` environment steps and at the end."""
+    curves: dict[str, list[tuple[int, float, float]]] = {}
+    with (ROOT / "docs" / "figures" / f"{name}.csv").open() as f:
+        for row in csv.DictReader(f):
+            curves.setdefault(row["seed"], []).append((int(row["env_steps"]), float(row["capture_rate"]),
+                                                       float(row["wall_seconds"])))
+    seeds = sorted(curves, key=int)
+    lines = ["| environment steps | " + " | ".join(f"seed {seed}" for seed in seeds) + " | mean | minutes of training |",
+             "|---:|" + "---:|" * (len(seeds) + 2)]
+
+    def row(label: str, points: list[tuple[int, float, float]]) -> str:
+        minutes = sorted(f"{p[2] / 60:.1f}" for p in points)
+        span = minutes[0] if minutes[0] == minutes[-1] else f"{minutes[0]}-{minutes[-1]}"
+        rates = " | ".join(f"{100 * p[1]:.1f}%" for p in points)
+        return f"| {label} | {rates} | {100 * sum(p[1] for p in points) / len(points):.1f}% | {span} |"
+
+    for step in checkpoints:
+        points = [next((p for p in curves[seed] if p[0] == step), None) for seed in seeds]
+        if all(points):
+            lines.append(row(f"{step:,}", points))
+    ends = [curves[seed][-1] for seed in seeds]
+    low, high = min(p[0] for p in ends), max(p[0] for p in ends)
+    lines.append(row(f"end ({low:,})" if low == high else f"end ({low:,}-{high:,})", ends))
+    lines.append(f"\nSource: `docs/figures/{name}.csv`, written by `scripts/train_ppo.py`.")
+    return "\n".join(lines)
+
+
+def variants_summary() -> str:
+    """What the variants' table says, in points of capture rate: the gap learning must close on the
+    windy variant and how much of it each learner closes, and what the noise costs the oracle."""
+    rows = read_results(RESULTS / "variants.json")["figures"]["rows"]
+
+    def rate(variant: str, agent: str) -> float:
+        match = [r for r in rows if r["variant"] == variant and r["agent"].startswith(agent)]
+        if len(match) != 1:
+            raise ValueError(f"docs/results/variants.json has {len(match)} rows for {variant}, {agent}")
+        return 100 * match[0]["captured"] / match[0]["throws"]
+
+    windy, noisy = "NetCatchWindy-v0", "NetCatchNoisy-v0"
+    blind, informed = rate(windy, "ballistic oracle"), rate(windy, "informed oracle")
+    adaptive, mlp, stacked = rate(windy, "adaptive oracle"), rate(windy, "PPO, MLP with"), rate(windy, "PPO, MLP on")
+    oracle = read_results(RESULTS / "agents.json")["figures"]["policies"]["oracle"]
+    clean = 100 * oracle["captured"] / oracle["throws"]
+    return "\n".join([
+        f"- The gap between the blind and the informed oracle on {windy}, {informed - blind:.1f} points, is what "
+        f"learning must close. PPO closes {mlp - blind:+.1f} points of it with the feedback in the observation, "
+        f"{stacked - blind:+.1f} on the last five observations stacked; the hand-written adaptive oracle "
+        f"{adaptive - blind:+.1f}.",
+        f"- {noisy}: the launch noise costs the ballistic oracle {clean - rate(noisy, 'ballistic oracle'):.1f} "
+        "points against NetCatch-v0 without noise. No policy can undo noise drawn after its action; one "
+        "can only aim where the noise costs least (no agent trained on it yet).",
+        f"- NetCatchRandomized-v0: the ballistic oracle catches {rate('NetCatchRandomized-v0', 'ballistic oracle'):.1f}%: "
+        "ball mass, restitution, friction and the net's stiffness and damping change how the net answers, not the "
+        "flight, so the variant tests robustness of what happens at the net (rim hits, loaded nets), not aim. "
+        "Each reset settles a new net, hence its lower throughput."])
+
+
+def _episode_row(rows: list[dict], scene: str, policy: str, balls: int) -> dict:
+    matches = [r for r in rows if (r["scene"], r["policy"], r["balls"]) == (scene, policy, balls)]
+    if len(matches) != 1:
+        raise ValueError(f"docs/results/episodes.json has {len(matches)} rows for {scene}, {policy}, {balls} balls")
+    return matches[0]
+
+
+def _training_rate() -> tuple[float, float]:
+    """The slowest and fastest seed's environment steps per second of training (evaluations
+    excluded), from the learning curve's CSV that ``scripts/train_ppo.py`` writes."""
+    last: dict[str, tuple[float, float]] = {}
+    with TRAINING_CURVE.open() as f:
+        for row in csv.DictReader(f):
+            last[row["seed"]] = (float(row["env_steps"]), float(row["wall_seconds"]))
+    rates = [steps / seconds for steps, seconds in last.values()]
+    return min(rates), max(rates)
+
+
+def _report_agreement(integrator: str, dt_ms: str) -> str:
+    """The outcome agreement of one setting in the report's section 2 (written by scripts/report.py)."""
+    text = (ROOT / REPORT).read_text()
+    section = text[text.index("## 2. Outcome accuracy"):text.index("## 3.")]
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if cells[:2] == [integrator, dt_ms]:
+            return cells[2]
+    raise ValueError(f"{REPORT} section 2 has no row for {integrator} at {dt_ms} ms")
+
+
+def at_a_glance() -> str:
+    """The README's speed and accuracy table: whole episodes as users pay them, next to the best case."""
+    record = read_results(RESULTS / "episodes.json")
+    rows = record["figures"]["rows"]
+    episodes = "docs/BENCHMARKS.md#7-episodes"
+    table = [("basket, **shipped PPO**, 3-ball episodes (every ball caught; the loaded net settles between throws)",
+              _episode_row(rows, "basket", "shipped PPO", 3), episodes),
+             ("basket, ballistic oracle, 3-ball episodes", _episode_row(rows, "basket", "oracle", 3), episodes),
+             ("basket, oracle, 10-ball episodes", _episode_row(rows, "basket", "oracle", 10), episodes),
+             ("basket, random actions, 3-ball episodes", _episode_row(rows, "basket", "random", 3), episodes),
+             ("goal (`line` rule), oracle, 3-ball episodes", _episode_row(rows, "goal", "oracle", 3), episodes),
+             ("best case: single oracle throws into the empty basket", _episode_row(rows, "basket", "oracle", 1),
+              "docs/BENCHMARKS.md#4-throughput")]
+    lines = ["| workload | throws/s | step p50 / p99 / max (ms) |", "|---|---:|---|"]
+    for label, row, link in table:
+        p50, p99, peak = row["step_ms"]
+        lines.append(f"| [{label}]({link}) | {row['throws_per_s']:.1f} | {p50:.1f} / {p99:.1f} / {peak:.1f} |")
+    low, high = _training_rate()
+    lines.append(f"| [PPO training, SB3, 8 envs in `SubprocVecEnv`](docs/AGENTS.md#learning-curve) | "
+                 f"{low:.0f}-{high:.0f} env steps/s | |")
+    lines.append(f"| [outcomes of the default (IMEX Euler, 2 ms) against RK4 at 0.1 ms, 1000 throws]"
+                 f"(docs/BENCHMARKS.md#2-outcome-accuracy) | {_report_agreement('imex_euler', '2')} agree | |")
+    lines.append(f"\nOne process, one numba thread. Sources: `docs/results/episodes.json` (`{record['command']}`), "
+                 "`docs/figures/ppo_curve.csv` (`python scripts/train_ppo.py --minutes 6 --seeds 0 1 2`), "
+                 "`docs/BENCHMARKS.md` (`python scripts/report.py`).")
+    return "\n".join(lines)
+
+
+BLOCKS: dict[str, Callable[[], str]] = {
+    "environments": environments,
+    "capture-rates": capture_rates,
+    "variants": variants,
+    "at-a-glance": at_a_glance,
+    "variants-summary": variants_summary,
+    "learning-curve": lambda: learning_curve("ppo_curve"),
+    "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
+    "learning-curve-windy-stack5": lambda: learning_curve("ppo_windy_stack5_curve",
+                                                          (0, 8192, 16384, 24576, 32768, 40960)),
+}
+"""How each quoted block is made."""
+
+FILES = ("README.md", "docs/AGENTS.md", "docs/index.md", "docs/getting-started.md")
+"""The files whose quoted blocks are generated."""
+
+_BLOCK = re.compile(r"(<!-- quote:([\w-]+) -->\n)(.*?)(<!-- /quote:\2 -->)", re.S)
+
+
+def render(text: str) -> str:
+    """``text`` with every quoted block made anew from its sources."""
+    return _BLOCK.sub(lambda m: f"{m.group(1)}{BLOCKS[m.group(2)]()}\n{m.group(4)}", text)
+
+
+def stale_blocks(root: Path = ROOT) -> list[str]:
+    """``FILE: NAME`` of every quoted block that differs from what its sources make."""
+    stale = []
+    for name in FILES:
+        path = root / name
+        if not path.is_file():
+            continue
+        text = path.read_text()
+        fresh = render(text)
+        stale += [f"{name}: {m.group(2)}" for m, n in zip(_BLOCK.finditer(text), _BLOCK.finditer(fresh))
+                  if m.group(0) != n.group(0)]
+    return stale
+
+
+def main() -> None:
+    """Rewrite every quoted block, or (``--check``) name those out of date."""
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--check", action="store_true", help="change nothing; exit 1 if a block is out of date")
+    args = parser.parse_args()
+    if args.check:
+        stale = stale_blocks()
+        print("\n".join(f"out of date: {block}" for block in stale) or "every quoted block matches its source")
+        raise SystemExit(1 if stale else 0)
+    for name in FILES:
+        path = ROOT / name
+        if path.is_file():
+            path.write_text(render(path.read_text()))
+    print(f"rewrote the quoted blocks of {', '.join(FILES)}")
+
+
+if __name__ == "__main__":
+    main()
