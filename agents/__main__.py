@@ -9,11 +9,14 @@ intervals and throughput.
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import sys
 import time
 from pathlib import Path
 
 from agents.evaluation import evaluate
 from agents.policies import PRETRAINED, TRAIN_EXTRA, load_policy
+from netgym.bench.results import write_results
 
 
 def main() -> None:
@@ -22,6 +25,7 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=100, help="seeded evaluation episodes per policy")
     parser.add_argument("--train", action="store_true", help="train a new model even if one is shipped")
     parser.add_argument("--minutes", type=float, default=20.0, help="training budget when training")
+    parser.add_argument("--results", type=Path, help="also write the capture rates to this result file (JSON)")
     args = parser.parse_args()
     model_path = PRETRAINED
     if args.train or not PRETRAINED.exists():
@@ -37,6 +41,7 @@ def main() -> None:
     start = time.perf_counter()
     evaluate(load_policy("oracle"), 1)  # loads (or compiles) the kernels of throws and pauses, outside the timings
     print(f"  simulator ready in {time.perf_counter() - start:.1f} s")
+    rates = {}
     for name in (str(model_path), "oracle", "random"):
         start = time.perf_counter()
         try:
@@ -49,6 +54,11 @@ def main() -> None:
         rate = result.throws / (time.perf_counter() - loaded)
         load = f"; loaded in {loaded - start:.1f} s" if loaded - start >= 0.05 else ""
         print(f"  {label:<24} capture rate {result}  [{rate:.0f} throws/s{load}]")
+        rates[label] = {**dataclasses.asdict(result), "throws_per_s": rate}
+    if args.results is not None:
+        figures = {"env": "NetCatch-v0", "episodes": args.episodes, "seeds": [10_000, 10_000 + args.episodes - 1],
+                   "policies": rates}
+        print(f"wrote {write_results(args.results, figures, ['-m', 'agents', *sys.argv[1:]])}")
 
 
 if __name__ == "__main__":

@@ -10,24 +10,27 @@ seeded 10000, 10001, ...; each agent meets the same ones. Two processes share th
 
 Usage::
 
-    python scripts/variants_table.py --episodes 1000
+    python scripts/variants_table.py --episodes 1000 --results docs/results/variants.json
     python scripts/variants_table.py --quick            # a few episodes, for smoke tests
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import time
 from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
 
 import netgym  # noqa: F401  (registers the variants)
-from agents.evaluation import evaluate
+from agents.evaluation import CaptureRate, evaluate
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
 from agents.policies import PRETRAINED_WINDY, PRETRAINED_WINDY_STACKED, FrameStackPolicy, load_policy
 from agents.random_agent import RandomAgent
+from netgym.bench.results import write_results
 
 AGENTS = {
     "ballistic oracle (blind to the wind)": lambda env: BallisticOracle(env.scene),
@@ -52,12 +55,13 @@ class ConstantAction:
         return np.zeros(3, dtype=np.float32), state
 
 
-def _row(job: tuple[str, str, int]) -> str:
+def _row(job: tuple[str, str, int]) -> dict:
     variant, agent, episodes = job
     kwargs = gym.spec(variant).kwargs
     start = time.perf_counter()
     rate = evaluate(AGENTS[agent], episodes, seed=10_000, progress=f"{variant} {agent}", **kwargs)
-    return f"| {variant} | {agent} | {rate} | {rate.throws / (time.perf_counter() - start):.1f} |"
+    return {"variant": variant, "agent": agent, **dataclasses.asdict(rate),
+            "throws_per_s": rate.throws / (time.perf_counter() - start)}
 
 
 def main() -> None:
@@ -66,6 +70,7 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--quick", action="store_true", help="2 episodes per agent")
+    parser.add_argument("--results", type=Path, help="also write the rows to this result file (JSON)")
     args = parser.parse_args()
     episodes = 2 if args.quick else args.episodes
     jobs = [(variant, agent, episodes) for variant, agents in VARIANTS.items() for agent in agents]
@@ -74,7 +79,11 @@ def main() -> None:
         rows = list(pool.map(_row, jobs))
     print(f"| variant | agent | capture rate ({episodes} episodes, 95% CI) | throws/s (one process) |")
     print("|---|---|---|---:|")
-    print("\n".join(rows))
+    for row in rows:
+        rate = CaptureRate(row["captured"], row["throws"], row["low"], row["high"])
+        print(f"| {row['variant']} | {row['agent']} | {rate} | {row['throws_per_s']:.1f} |")
+    if args.results is not None:
+        print(f"wrote {write_results(args.results, {'episodes': episodes, 'seed': 10_000, 'rows': rows})}")
 
 
 if __name__ == "__main__":

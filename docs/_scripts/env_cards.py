@@ -13,7 +13,6 @@ Usage::
 from __future__ import annotations
 
 import inspect
-import re
 import sys
 from pathlib import Path
 
@@ -25,6 +24,7 @@ sys.path[:0] = [str(DOCS.parent), str(DOCS / "_scripts")]
 import netgym  # noqa: E402
 from netgym.envs import NetCatchEnv  # noqa: E402
 from netgym.wrappers import ThrowerView  # noqa: E402
+from griffe_roles import plain_roles  # noqa: E402
 from quotes import environments  # noqa: E402
 
 SECTIONS = ("Description", "Action Space", "Observation Space", "Rewards", "Starting State", "Episode End",
@@ -33,14 +33,6 @@ SECTIONS = ("Description", "Action Space", "Observation Space", "Rewards", "Star
 
 POSTERS = DOCS / "figures" / "envs"
 """Where each id's poster lies (``ID.png``), written by ``scripts/render_posters.py``."""
-
-_ROLE = re.compile(r":(?:class|mod|func|meth|data|attr):`~?([\w.]+)`")
-
-
-def _markdown(text: str) -> str:
-    """Docstring text as markdown: Sphinx roles become code spans of the name's last part."""
-    return _ROLE.sub(lambda m: f"`{m.group(1).rsplit('.', 1)[-1]}`", text)
-
 
 def docstring_sections(cls: type) -> dict[str, str]:
     """The ``## Heading`` sections of ``cls``'s docstring by title-cased heading; the text before
@@ -54,7 +46,7 @@ def docstring_sections(cls: type) -> dict[str, str]:
         else:
             lines.append(line)
     sections[heading] = "\n".join(lines).strip()
-    return {name: _markdown(text) for name, text in sections.items()}
+    return {name: plain_roles(text) for name, text in sections.items()}
 
 
 def _kwargs_text(kwargs: dict) -> str:
@@ -73,7 +65,7 @@ def env_card(env_id: str) -> str:
         raise ValueError(f"NetCatchEnv's docstring has no section {missing}: every env card needs them")
     observation = docs["Observation Space"]
     if any(isinstance(wrapper, ThrowerView) for wrapper in _wrappers(env)):
-        observation = _markdown(inspect.getdoc(ThrowerView)) + "\n\nThe vector observation it replaces:\n\n" + observation
+        observation = plain_roles(inspect.getdoc(ThrowerView)) + "\n\nThe vector observation it replaces:\n\n" + observation
     poster = POSTERS / f"{env_id}.png"
     if not poster.is_file():
         raise FileNotFoundError(f"{env_id} has no poster {poster}: run python scripts/render_posters.py")

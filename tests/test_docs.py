@@ -1,0 +1,113 @@
+"""The README and the docs site: env cards per registered id, quoted figures that match their
+result files, no figures in docstrings, a README within its limits, a site that builds clean."""
+
+from __future__ import annotations
+
+import ast
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import gymnasium as gym
+
+import netgym
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "docs" / "_scripts"))
+
+import env_cards  # noqa: E402
+import quotes  # noqa: E402
+
+MEASURED = re.compile(r"\d[\d.,]*\s*(?:us|µs|ns|throws/s|steps/s|substeps/s)\b|\d[\d.,]*\s*ms (?:a|per|each)\b"
+                      r"|(?:catch(?:es)?|caught|agree(?:s)? on) \d[\d.]*%")
+"""A measured figure: a timing, a rate, a capture or agreement percentage."""
+
+
+def test_every_registered_id_has_a_current_card_with_gymnasiums_sections() -> None:
+    pages = env_cards.env_pages()
+    registered = [env_id for env_id in gym.registry if env_id.startswith("NetCatch")]
+    assert sorted(registered) == sorted(netgym.ENVIRONMENTS)
+    for env_id in registered:
+        card = pages[f"environments/{env_id}.md"]
+        headings = re.findall(r"^## (.+)$", card, re.M)
+        assert [h for h in headings if h in env_cards.SECTIONS] == list(env_cards.SECTIONS), env_id
+        for section in env_cards.SECTIONS:  # no section is left empty
+            body = card.split(f"## {section}\n", 1)[1].split("\n## ", 1)[0]
+            assert body.strip(), f"{env_id}: empty {section}"
+        assert f'gymnasium.make("{env_id}")' in card
+        assert (env_cards.POSTERS / f"{env_id}.png").is_file()
+    assert env_cards.stale_pages() == []
+
+
+def test_a_card_shows_its_own_spaces_and_registration() -> None:
+    windy = env_cards.env_card("NetCatchWindy-v0")
+    assert "shape=(11,)" in windy and "`wind=(0.0, 3.0)`" in windy and "| Balls per episode | 5 |" in windy
+    pixels = env_cards.env_card("NetCatchPixels-v0")
+    assert "shape=(84, 84, 3)" in pixels and "thrower" in pixels.split("## Observation Space", 1)[1]
+
+
+def test_quoted_figures_match_their_result_files(tmp_path: Path) -> None:
+    assert quotes.stale_blocks() == []
+    for name in quotes.FILES:  # a hand edit of a quoted figure is caught
+        if (ROOT / name).is_file():
+            (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy(ROOT / name, tmp_path / name)
+    readme = tmp_path / "README.md"
+    text = readme.read_text()
+    block = text.split("<!-- quote:at-a-glance -->\n", 1)[1]
+    edited = re.sub(r"\| (\d+)\.(\d) \|", lambda m: f"| {int(m.group(1)) + 1}.{m.group(2)} |", block, count=1)
+    assert edited != block
+    readme.write_text(text.replace(block, edited))
+    assert quotes.stale_blocks(tmp_path) == ["README.md: at-a-glance"]
+
+
+def test_every_quoted_block_is_generated() -> None:
+    for name in quotes.FILES:
+        text = (ROOT / name).read_text()
+        opened = re.findall(r"<!-- quote:([\w-]+) -->", text)
+        assert opened == re.findall(r"<!-- /quote:([\w-]+) -->", text), name
+        assert set(opened) <= set(quotes.BLOCKS), name
+    assert "at-a-glance" in re.findall(r"<!-- quote:([\w-]+) -->", (ROOT / "README.md").read_text())
+
+
+def _docstrings(path: Path):
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            doc = ast.get_docstring(node)
+            if doc:
+                yield getattr(node, "name", path.stem), doc
+
+
+def test_no_measured_figures_in_docstrings() -> None:
+    found = [f"{path.relative_to(ROOT)}::{name}: {match.group(0)!r}"
+             for path in sorted((ROOT / "netgym").rglob("*.py")) if "bench" not in path.parts
+             for name, doc in _docstrings(path) for match in MEASURED.finditer(doc)]
+    assert found == []
+
+
+def test_the_figure_pattern_finds_a_timing_and_a_capture_rate() -> None:
+    assert MEASURED.search("the sweep takes 28 us instead of 39")
+    assert MEASURED.search("the blind oracle catches 54% of windy throws")
+    assert not MEASURED.search("90% of the integrator's stability limit, 0.1 m/s")
+
+
+def test_readme_is_an_entry_point() -> None:
+    text = (ROOT / "README.md").read_text()
+    assert len(text.splitlines()) <= 150 and len(text.split()) <= 1500
+    assert not re.search(r"\b20\d\d-\d\d-\d\d\b|this (?:\d-core )?machine|experiment/|branch", text)
+    for link in re.findall(r"\]\(((?:docs/)[^)#]+)", text):
+        assert (ROOT / link).exists(), link
+
+
+def test_the_docs_site_builds_with_warnings_as_errors(tmp_path: Path) -> None:
+    result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(tmp_path / "site")], cwd=ROOT,
+                            capture_output=True, text=True, timeout=600,
+                            env={**os.environ, "NO_MKDOCS_2_WARNING": "1"})
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert (tmp_path / "site" / "environments" / "NetCatchWindy-v0" / "index.html").is_file()
+    api = (tmp_path / "site" / "api" / "index.html").read_text()
+    assert "NetCatchEnv" in api and "ThrowResult" in api
