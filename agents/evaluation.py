@@ -1,4 +1,4 @@
-"""Capture rate of a policy on NetCatch-v0 over seeded episodes, with a 95% confidence interval."""
+"""Capture rate of a policy on a registered NetCatch env over seeded episodes, with a 95% confidence interval."""
 
 from __future__ import annotations
 
@@ -7,9 +7,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+import gymnasium as gym
 import numpy as np
 from tqdm import tqdm
 
+from agents.model_env import DEFAULT_ENV
 from netgym.envs import NetCatchEnv
 
 
@@ -50,15 +52,16 @@ def wilson_interval(successes: int, trials: int, z: float = 1.96) -> tuple[float
 
 
 def evaluate(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, seed: int = 0,
-             progress: str | None = None, **env_kwargs: Any) -> CaptureRate:
-    """Run ``episodes`` episodes seeded ``seed, seed + 1, ...`` and count captured throws;
-    with a ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also be a
-    function of the env that returns the policy (for one that reads the env, such as
+             progress: str | None = None, env_id: str = DEFAULT_ENV, **env_kwargs: Any) -> CaptureRate:
+    """Run ``episodes`` episodes of the registered ``env_id`` (its arguments overridden by
+    ``env_kwargs``) seeded ``seed, seed + 1, ...`` and count captured throws; with a
+    ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also be a function of
+    the :class:`NetCatchEnv` that returns the policy (for one that reads the env, such as
     :class:`~agents.oracle.InformedOracle`). The policy is given its recurrent ``state`` back
     and ``episode_start`` (as SB3's ``evaluate_policy`` does), so policies with memory work too."""
-    env = NetCatchEnv(**env_kwargs)
+    env = gym.make(env_id, disable_env_checker=True, **env_kwargs)
     if isinstance(policy, type) or not hasattr(policy, "predict"):
-        policy = policy(env)
+        policy = policy(env.unwrapped)
     captured = throws = 0
     for episode in tqdm(range(episodes), desc=progress, unit="episode", disable=progress is None, leave=False):
         obs, _ = env.reset(seed=seed + episode)

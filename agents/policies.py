@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from agents.evaluation import Policy
+from agents.model_env import DEFAULT_ENV, check_registered, model_env, observation_space
 from agents.oracle import BallisticOracle
 from agents.random_agent import RandomAgent
+from netgym.envs import NetCatchEnv
 
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.zip"  # trained on NetCatchWindy-v0
@@ -37,6 +40,31 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO")
     except ImportError as missing:
         raise ImportError(f"loading the saved model {str(name)!r} needs {TRAIN_EXTRA}") from missing
     return getattr(stable_baselines3, algorithm.upper()).load(str(name), device="cpu")
+
+
+def policy_in_env(name: str | Path, env_id: str | None = None,
+                  algorithm: str = "PPO") -> tuple[str, Policy | Callable[[NetCatchEnv], Policy]]:
+    """The registered env to act in and ``name``'s policy for one env of it (a policy, or a
+    function of the env that makes one, as :func:`~agents.evaluation.evaluate` takes).
+    ``env_id`` defaults to the one a saved model was trained on (see
+    :func:`~agents.model_env.model_env`, which raises EnvMismatchError for an env the model
+    cannot read), else NetCatch-v0; the oracle aims with that env's scene."""
+    if str(name) not in ("oracle", "random"):
+        model = load_policy(name, algorithm=algorithm)
+        found = model_env(model, env_id, str(name))
+        return found.env_id, acting_policy(model, found.frame_stack)
+    env_id = DEFAULT_ENV if env_id is None else env_id
+    check_registered(env_id)
+    if len(observation_space(env_id).shape) != 1:
+        raise ValueError(f"the {name} policy acts on NetCatchEnv's vector observation; {env_id} observes "
+                         f"{observation_space(env_id).shape} images")
+    return env_id, (lambda env: BallisticOracle(env.scene)) if str(name) == "oracle" else load_policy(name)
+
+
+def acting_policy(model: Any, frame_stack: int = 1) -> Any:
+    """``model`` as a policy for one unstacked env (wrapped in :class:`FrameStackPolicy` when it
+    was trained on ``frame_stack`` > 1 stacked observations)."""
+    return FrameStackPolicy(model, frame_stack) if frame_stack > 1 else model
 
 
 class FrameStackPolicy:

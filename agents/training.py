@@ -8,26 +8,21 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import Any
 
-import gymnasium as gym
 import numpy as np
 from stable_baselines3 import PPO
-from stable_baselines3.common.callbacks import BaseCallback
+from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.vec_env import SubprocVecEnv, VecEnv, VecFrameStack
 
 from agents.evaluation import evaluate
 from agents.hyperparams import ENV_KWARGS, POLICY, PPO_PARAMS  # from agents/hyperparams/ppo.yml
-from agents.policies import FrameStackPolicy
+from agents.model_env import record_env
+from agents.policies import acting_policy
+from agents.run_progress import RunProgress
 from netgym.envs import NetCatchEnv
 
 EVAL_SEED = 20_000   # evaluation episodes during training use seeds 20000, 20001, ... (not the final test's)
-
-
-def env_kwargs(env_id: str) -> dict:
-    """The keyword arguments of a registered NetCatch id with the training's own (ppo.yml's)."""
-    return {**gym.spec(env_id).kwargs, **ENV_KWARGS}
 
 
 def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0", frame_stack: int = 1) -> VecEnv:
@@ -38,12 +33,6 @@ def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0", frame
     env = make_vec_env(f"netgym:{env_id}", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
                        env_kwargs=dict(ENV_KWARGS))
     return VecFrameStack(env, frame_stack) if frame_stack > 1 else env
-
-
-def acting_policy(model: PPO, frame_stack: int = 1) -> Any:
-    """``model`` as a policy for one unstacked env (wrapped in :class:`FrameStackPolicy` when it
-    was trained on stacked observations)."""
-    return FrameStackPolicy(model, frame_stack) if frame_stack > 1 else model
 
 
 Point = tuple[int, float, float]
@@ -71,7 +60,7 @@ class CaptureCurve(BaseCallback):
     def _evaluate(self) -> None:
         self._spent += time.perf_counter() - self._resumed
         rate = evaluate(acting_policy(self.model, self.frame_stack), self.episodes, seed=self.seed,
-                        **env_kwargs(self.env_id)).rate  # captures
+                        env_id=self.env_id, **ENV_KWARGS).rate  # captures
         self.points.append((self.num_timesteps, rate, self._spent))
         self.logger.record("eval/capture_rate", rate)
         if rate > self._best:
@@ -84,10 +73,14 @@ class CaptureCurve(BaseCallback):
         self._resumed = time.perf_counter()
         self._evaluate()
 
+    def training_seconds(self) -> float:
+        """Wall seconds of training so far, evaluations excluded (what the budget counts)."""
+        return self._spent + time.perf_counter() - self._resumed
+
     def _on_step(self) -> bool:
         if self.num_timesteps >= self._next:
             self._evaluate()
-        return self._spent + time.perf_counter() - self._resumed < self.budget_s
+        return self.training_seconds() < self.budget_s
 
     def _on_training_end(self) -> None:
         if self.points[-1][0] != self.num_timesteps:
@@ -139,15 +132,19 @@ def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: in
           progress_bar: bool = True, env_id: str = "NetCatch-v0", frame_stack: int = 1) -> tuple[PPO, list[Point]]:
     """Train PPO within a wall-clock budget; saves ``model.zip`` and ``best_model.zip`` in
     ``out`` and logs to TensorBoard under ``out/tb``. Returns the model and its capture curve
-    (from step 0 to the end; see :class:`CaptureCurve`). ``progress_bar``: SB3's, with ETA;
+    (from step 0 to the end; see :class:`CaptureCurve`). ``progress_bar``: a bar of steps whose
+    ETA is for the budget or the step cap, whichever ends the run first (:class:`RunProgress`);
     ``env_id``: the registered NetCatch id to train on; ``frame_stack``: observations stacked
-    over that many steps (act with :func:`acting_policy`)."""
+    over that many steps (act with :func:`~agents.policies.acting_policy`). Both are saved
+    with the models (:func:`~agents.model_env.record_env`)."""
     out.mkdir(parents=True, exist_ok=True)
     env = make_training_env(n_envs, seed, env_id, frame_stack)
     curve = CaptureCurve(eval_every, eval_episodes, 60.0 * minutes, out / "best_model", env_id=env_id,
                          frame_stack=frame_stack)
     model = PPO(POLICY, env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
-    model.learn(timesteps, callback=curve, progress_bar=progress_bar)
+    record_env(model, env_id, frame_stack)
+    callbacks = [curve, RunProgress(curve.budget_s, curve.training_seconds)] if progress_bar else [curve]
+    model.learn(timesteps, callback=CallbackList(callbacks))
     model.save(out / "model")
     env.close()
     return model, curve.points

@@ -27,9 +27,8 @@ import csv
 from pathlib import Path
 
 from agents.evaluation import evaluate
-from agents.policies import load_policy
-from agents.oracle import BallisticOracle
-from agents.training import acting_policy, env_kwargs, plot_curves, train
+from agents.policies import acting_policy, policy_in_env
+from agents.training import plot_curves, train
 
 
 def main() -> None:
@@ -60,9 +59,8 @@ def main() -> None:
         print(f"seed {seed}: trained {model.num_timesteps} steps in {points[-1][2] / 60:.1f} min of training; "
               f"evaluations {', '.join(f'{100 * p[1]:.0f}%' for p in points)}; best {100 * max(p[1] for p in points):.1f}%")
     episodes = 4 if args.quick else 100
-    kwargs = env_kwargs(args.env)
-    oracle = evaluate(lambda env: BallisticOracle(env.scene), episodes, seed=10_000, **kwargs)
-    random = evaluate(load_policy("random"), episodes, seed=10_000, **kwargs)
+    oracle = evaluate(policy_in_env("oracle", args.env)[1], episodes, seed=10_000, env_id=args.env)
+    random = evaluate(policy_in_env("random", args.env)[1], episodes, seed=10_000, env_id=args.env)
     with open(args.out / "curve.csv", "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["seed", "env_steps", "capture_rate", "wall_seconds"])
@@ -71,7 +69,7 @@ def main() -> None:
     plot_curves(curves, oracle.rate, random.rate, args.out / "learning_curve.png", f"PPO on {args.env}{stacked}")
     for seed, model in zip(args.seeds, models):
         print(f"seed {seed}: capture rate over {episodes} test episodes: PPO "
-              f"{evaluate(acting_policy(model, args.frame_stack), episodes, seed=10_000, **kwargs)}")
+              f"{evaluate(acting_policy(model, args.frame_stack), episodes, seed=10_000, env_id=args.env)}")
     print(f"oracle {oracle}; random {random}; wrote {args.out / 'learning_curve.png'}")
 
 

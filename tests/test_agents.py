@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from agents.evaluation import evaluate, wilson_interval
-from agents.policies import PRETRAINED, load_policy
+from agents.model_env import EnvMismatchError, ModelEnv, model_env, saved_env
+from agents.policies import PRETRAINED, PRETRAINED_WINDY_STACKED, FrameStackPolicy, load_policy, policy_in_env
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -49,6 +50,7 @@ def test_train_ppo_quick_writes_a_loadable_model(tmp_path: Path) -> None:
     model = load_policy(tmp_path / "model.zip")
     action, _ = model.predict([5.0, -1.2, 1.0, 0.0, 0.0, 1.0, -2.7], deterministic=True)
     assert action.shape == (3,)
+    assert saved_env(model) == saved_env(load_policy(tmp_path / "best_model.zip")) == ModelEnv("NetCatch-v0", 1)
     _assert_trained_with_the_yml_settings(model)
 
 
@@ -156,3 +158,49 @@ def test_frame_stack_policy_sees_what_vec_frame_stack_gives_the_model() -> None:
         if done:
             obs, _ = env.reset()
     assert np.count_nonzero(recorder.seen[2][:-obs.size]) == 0  # a new episode's stack starts from zeros
+
+
+def test_shipped_models_say_which_env_they_act_in() -> None:
+    env_id, policy = policy_in_env(PRETRAINED_WINDY_STACKED)
+    assert env_id == "NetCatchWindy-v0" and isinstance(policy, FrameStackPolicy) and policy.n_stack == 5
+    assert saved_env(load_policy(PRETRAINED)) == ModelEnv("NetCatch-v0", 1)
+    with pytest.raises(EnvMismatchError, match=r"trained on NetCatchWindy-v0 with 5 observations stacked.*"
+                                               r"NetCatchGoal-v0's have shape \(7,\)"):
+        policy_in_env(PRETRAINED_WINDY_STACKED, "NetCatchGoal-v0")
+
+
+@pytest.mark.parametrize(("size", "found"), [(7, ModelEnv("NetCatch-v0")), (11, ModelEnv("NetCatchWindy-v0")),
+                                             (55, ModelEnv("NetCatchWindy-v0", 5)), (14, ModelEnv("NetCatch-v0", 2))])
+def test_a_model_saved_without_its_env_is_matched_by_its_observations(size: int, found: ModelEnv) -> None:
+    from types import SimpleNamespace
+
+    import numpy as np
+    from gymnasium import spaces
+
+    model = SimpleNamespace(observation_space=spaces.Box(-1.0, 1.0, (size,), np.float32))
+    assert model_env(model) == found
+    with pytest.raises(EnvMismatchError, match="saved without its env id"):
+        model_env(SimpleNamespace(observation_space=spaces.Box(-1.0, 1.0, (13,), np.float32)))
+
+
+def test_training_progress_ends_where_the_budget_or_the_step_cap_ends_the_run() -> None:
+    """The bar's total (and so its ETA) is the steps the run will have made when it ends:
+    a 2-minute budget at 100 steps/s ends a 200,000-step run at 12,000 steps."""
+    import io
+    from types import SimpleNamespace
+
+    from agents.run_progress import RunProgress
+
+    clock, stream = [0.0], io.StringIO()
+    progress = RunProgress(budget_s=120.0, training_seconds=lambda: clock[0], stream=stream)
+    progress.model = SimpleNamespace(num_timesteps=0)
+    progress.on_training_start({"total_timesteps": 200_000}, {})
+    assert progress.bar.total == 200_000  # no rate measured yet
+    progress.model.num_timesteps, clock[0] = 3_000, 30.0
+    progress.on_step()
+    assert progress.bar.total == 12_000 and progress.bar.n == 3_000
+    progress.model.num_timesteps, clock[0] = 150_000, 60.0  # fast enough to reach the cap first
+    progress.on_step()
+    assert progress.bar.total == 200_000
+    progress.on_training_end()
+    assert progress.bar.total == progress.bar.n == 150_000 and "150k/150k" in stream.getvalue()

@@ -181,3 +181,17 @@ def test_held_goal_phases_quick_times_each_capture_before_its_decision() -> None
     moving = next(v for k, v in figures.items() if k.startswith("ball's horizontal motion ended"))
     bouncing = figures["ball last off the floor (bouncing in place) at"]
     assert moving[2] <= decided[2] and bouncing[2] <= decided[2]  # nothing is sampled after the decision
+
+
+def test_evaluate_reads_the_env_saved_with_a_variant_model() -> None:
+    """The windy model is evaluated on NetCatchWindy-v0 with no --env (5 throws an episode)."""
+    out = _run("scripts/evaluate.py", "agents/pretrained/ppo_windy.zip", "--episodes", "2")
+    assert "ppo_windy.zip on NetCatchWindy-v0: capture rate" in out and "/10 throws" in out
+
+
+def test_evaluate_names_both_envs_when_the_model_cannot_read_the_one_asked_for() -> None:
+    done = subprocess.run([sys.executable, "scripts/evaluate.py", "agents/pretrained/ppo_windy.zip", "--env",
+                           "NetCatch-v0", "--episodes", "1"], cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 2 and "Unexpected observation shape" not in done.stderr
+    assert "error: agents/pretrained/ppo_windy.zip was trained on NetCatchWindy-v0" in done.stderr
+    assert "NetCatch-v0's have shape (7,)" in done.stderr
