@@ -72,7 +72,7 @@ def _oscillator(integrator: int, dt: float, t_end: float, ks: float, kd: float, 
                         contact=np.zeros((len(Contact), 2)), restitution_threshold=0.0,
                         gravity=0.0, drag=0.0, ball_radius=0.1, opening=far_away.kernel_array(), ball_drag=0.0,
                         wind=np.zeros(3))
-    settings = Settings(integrator=integrator, dt=dt, max_travel=0.25, cg_tolerance=1e-13, cg_max_iterations=500,
+    settings = Settings.make(integrator=integrator, dt=dt, max_travel=0.25, cg_tolerance=1e-13, cg_max_iterations=500,
                         divergence_speed=1e6)
     status = stepping.advance(x, v, inv_mass, np.zeros(0, dtype=np.int8), model, settings, round(t_end / dt),
                               Scratch.sized(2, 1), stepping.new_counters())

@@ -76,7 +76,7 @@ def _slide(angle: float, friction: float, seconds: float, dt: float = 1e-3) -> f
                         restitution_threshold=0.2,
                         gravity=-9.81, drag=0.0, ball_radius=radius, opening=nowhere.kernel_array(), ball_drag=0.0,
                         wind=np.zeros(3))
-    settings = Settings(Integrator.SYMPLECTIC_EULER, dt, 0.25, 1e-10, 100, 1e3)
+    settings = Settings.make(Integrator.SYMPLECTIC_EULER, dt, 0.25, 1e-10, 100, 1e3)
     start = x[-1].copy()
     status = stepping.advance(x, v, inv_mass, np.zeros(1, dtype=np.int8), model, settings, round(seconds / dt),
                               Scratch.sized(len(x), 1), stepping.new_counters())

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 from netgym.physics.jit import kernel
+from netgym.physics.rows import copy_vector
 
 MAX_FLIGHT_STEP = 1e-3   # s: longest RK4 step of the fast path's flight through air
 CONTACT_ITERATIONS = 4   # Newton iterations on the time a step meets the ground
@@ -95,19 +96,21 @@ def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, m
             p[1] += h * v[1]
             left -= h
             continue
-        start_p[:] = p
-        start_v[:] = v
+        copy_vector(start_p, p)
+        copy_vector(start_v, v)
         rk4_step(p, v, h, gravity, k, wind)
         if p[2] < radius and v[2] < 0.0:
             # cut the step where the ball meets the ground (Newton on the height), then bounce
             cut = h * (start_p[2] - radius) / max(start_p[2] - p[2], 1e-15)
             for _ in range(CONTACT_ITERATIONS):
-                p[:], v[:] = start_p, start_v
+                copy_vector(p, start_p)
+                copy_vector(v, start_v)
                 rk4_step(p, v, cut, gravity, k, wind)
                 if v[2] >= 0.0:
                     break
                 cut = min(h, max(0.0, cut - (p[2] - radius) / v[2]))
-            p[:], v[:] = start_p, start_v
+            copy_vector(p, start_p)
+            copy_vector(v, start_v)
             rk4_step(p, v, cut, gravity, k, wind)
             p[2] = radius
             _bounce(v, restitution, friction, threshold)
@@ -145,11 +148,11 @@ def flight_path(p, v, gravity, k, wind, radius, step, t_max):
     count = int(t_max / step) + 1
     points = np.empty((count + 1, 3))
     q, u = p.copy(), v.copy()
-    points[0] = q
+    copy_vector(points[0], q)
     n = 1
     while n <= count:
         rk4_step(q, u, step, gravity, k, wind)
-        points[n] = q
+        copy_vector(points[n], q)
         n += 1
         if q[2] < radius and u[2] < 0.0:
             break
@@ -167,7 +170,7 @@ def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t
     before_q = np.empty(3)
     t = 0.0
     while t < t_max:
-        before_q[:] = q
+        copy_vector(before_q, q)
         rk4_step(q, u, step, gravity, k, wind)
         t += step
         h0 = inwards * (value - before_q[axis])   # > 0: still before the plane
@@ -176,7 +179,7 @@ def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t
             s = h0 / (h0 - h1)
             return before_q + s * (q - before_q), True
         if abs(value - q[axis]) < abs(value - nearest[axis]):
-            nearest[:] = q
+            copy_vector(nearest, q)
         if q[2] < radius and u[2] < 0.0:
             break
     return nearest, False

@@ -1,6 +1,7 @@
 """Time integrators for the smooth forces (springs, dampers, gravity); contacts come after.
 
-Five methods, one numba kernel each, selected by :class:`~netgym.physics.kinds.Integrator` code:
+Five methods, one numba kernel each; :func:`smooth_step` takes the one its
+:class:`~netgym.physics.model.Settings` are made for, chosen when the calling kernel compiles:
 
 ====================  =====  ===============================================================
 integrator            order  notes
@@ -24,10 +25,13 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from netgym.physics.jit import inline_kernel, kernel
+from numba.core.errors import NumbaTypeError
+from numba.extending import overload
 
 from netgym.physics.forces import accelerations, spring_axis, spring_forces
-from netgym.physics.rows import add_pair_force, add_scaled
+from netgym.physics.jit import inline_kernel, kernel
+from netgym.physics.kinds import Integrator
+from netgym.physics.rows import add_pair_force, add_scaled, copy_rows
 
 WORK_SLOTS = 8
 START_SLOT = 7   # the one slot the integrators leave alone: positions at the start of a substep
@@ -134,8 +138,8 @@ def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
     """Classical fourth-order Runge-Kutta on (x, v)."""
     xs, vs, a, xsum, vsum = work[0], work[1], work[2], work[3], work[4]
     accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
-    xsum[:] = v
-    vsum[:] = a
+    copy_rows(xsum, v)
+    copy_rows(vsum, a)
     for stage in range(3):
         h = dt if stage == 2 else 0.5 * dt
         weight = 1.0 if stage == 2 else 2.0
@@ -263,3 +267,37 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tole
             v[k, c] += dv[k, c]
             x[k, c] += dt * v[k, c]
     return iterations
+
+
+def smooth_step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+    """One step of ``dt`` of the smooth forces with the integrator ``settings`` are made for (their
+    class, see :meth:`~netgym.physics.model.Settings.make`); implicit Euler adds its CG
+    iterations to ``stats``. For numba kernels only: the integrator is chosen when the calling
+    kernel compiles, so that it compiles that integrator alone."""
+    raise TypeError("smooth_step runs inside numba kernels only")
+
+
+@overload(smooth_step, jit_options={"error_model": "numpy"})
+def _smooth_step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+    """The implementation of :func:`smooth_step` for the integrator of ``settings``' type."""
+    integrator = getattr(getattr(settings, "instance_class", None), "INTEGRATOR", None)
+    if integrator is None:
+        raise NumbaTypeError(f"smooth_step takes settings of one integrator (Settings.make or Settings.of), "
+                             f"not {settings}")
+    if integrator == Integrator.RK4:
+        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+            step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work)
+    elif integrator == Integrator.IMEX_EULER:
+        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+            step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef)
+    elif integrator == Integrator.IMPLICIT_EULER:
+        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt,
+                                                          settings.cg_tolerance, settings.cg_max_iterations,
+                                                          work, coef)
+    else:
+        symplectic = integrator == Integrator.SYMPLECTIC_EULER
+
+        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+            step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplectic)
+    return step

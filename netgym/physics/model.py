@@ -55,7 +55,12 @@ class KernelModel(NamedTuple):
 
 
 class Settings(NamedTuple):
-    """How to integrate: the method and step, and the safeguards (see :class:`SimulationConfig`)."""
+    """How to integrate: the method and step, and the safeguards (see :class:`SimulationConfig`).
+
+    Made by :meth:`make` or :meth:`of`, settings are an instance of their integrator's own
+    subclass (:data:`SETTINGS_CLASSES`): the kernels take the integrator from that type, so
+    numba compiles a kernel once per integrator it meets, and only those.
+    """
 
     integrator: int
     dt: float
@@ -64,11 +69,32 @@ class Settings(NamedTuple):
     cg_max_iterations: int
     divergence_speed: float
 
+    @staticmethod
+    def make(integrator: int, dt: float, max_travel: float, cg_tolerance: float, cg_max_iterations: int,
+             divergence_speed: float) -> "Settings":
+        """Settings of ``integrator`` (an :class:`Integrator` code), of its class in :data:`SETTINGS_CLASSES`."""
+        return SETTINGS_CLASSES[Integrator(integrator)](int(integrator), float(dt), float(max_travel),
+                                                        float(cg_tolerance), int(cg_max_iterations),
+                                                        float(divergence_speed))
+
     @classmethod
     def of(cls, config: SimulationConfig, integrator: int, dt: float) -> "Settings":
         """The settings of a scene's simulation section with this integrator and ``dt``."""
-        return cls(int(integrator), float(dt), config.max_ball_travel, config.cg_tolerance,
-                   config.cg_max_iterations, config.divergence_speed)
+        return cls.make(integrator, dt, config.max_ball_travel, config.cg_tolerance, config.cg_max_iterations,
+                        config.divergence_speed)
+
+
+def _settings_class(integrator: Integrator) -> type[Settings]:
+    """The subclass of :class:`Settings` of one integrator, named after it (``ImexEulerSettings``),
+    with the integrator as its ``INTEGRATOR``."""
+    name = "".join(word.title() for word in integrator.label.split("_")) + "Settings"
+    return type(name, (Settings,), {"__slots__": (), "__module__": __name__, "__qualname__": name,
+                                    "__doc__": f":class:`Settings` of {integrator.label}.", "INTEGRATOR": integrator})
+
+
+SETTINGS_CLASSES: dict[Integrator, type[Settings]] = {integrator: _settings_class(integrator) for integrator in Integrator}
+"""Each integrator's class of :class:`Settings`."""
+globals().update({cls.__name__: cls for cls in SETTINGS_CLASSES.values()})  # numba's cache pickles them by name
 
 
 @dataclass(frozen=True)

@@ -10,8 +10,8 @@ from netgym.physics.jit import kernel
 from netgym.physics.air import rk4_step
 from netgym.physics.contacts import resolve_contacts
 from netgym.physics.forces import kinetic_energy
-from netgym.physics.integrators import START_SLOT, step_euler, step_imex_euler, step_implicit_euler, step_rk4
-from netgym.physics.kinds import Integrator
+from netgym.physics.integrators import START_SLOT, smooth_step
+from netgym.physics.rows import copy_row, copy_rows
 
 OK, DIVERGED = 0, 1
 COUNTERS = np.dtype([("substeps", np.int64), ("cg_iterations", np.int64)])
@@ -88,8 +88,8 @@ def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind
     for b in range(before.shape[0]):
         k = n_net + b
         if ball_drag > 0.0:
-            x[k] = before[b]
-            v[k] = before_v[b]
+            copy_row(x, k, before, b)
+            copy_row(v, k, before_v, b)
             rk4_step(x[k], v[k], h, gravity, ball_drag, wind)
             continue
         for c in range(3):
@@ -137,7 +137,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
     before_v, box, speeds, near = buffers
     n_net, radius, gravity, drag = model.n_net, model.ball_radius, model.gravity, model.drag
     springs, params = model.springs, model.spring_params
-    integrator, dt = settings.integrator, settings.dt
+    dt = settings.dt
     work, coef = scratch.work, scratch.coef
     start = work[START_SLOT]  # every body's position at the start of the substep
     before = start[n_net:]
@@ -147,23 +147,11 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
         substeps = _substeps(x, v, n_net, radius, dt, settings.max_travel * radius, speeds)
     h = dt / substeps
     for _sub in range(substeps):
-        for k in range(x.shape[0]):
-            for c in range(3):
-                start[k, c] = x[k, c]
+        copy_rows(start, x)
         for b in range(n_balls):
             for c in range(3):
                 before_v[b, c] = v[n_net + b, c]
-        if integrator == Integrator.EXPLICIT_EULER or integrator == Integrator.SYMPLECTIC_EULER:
-            step_euler(x, v, inv_mass, gravity, drag, springs, params, h, work,
-                       integrator == Integrator.SYMPLECTIC_EULER)
-        elif integrator == Integrator.RK4:
-            step_rk4(x, v, inv_mass, gravity, drag, springs, params, h, work)
-        elif integrator == Integrator.IMEX_EULER:
-            step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, h, work, coef)
-        else:
-            stats[0].cg_iterations += step_implicit_euler(
-                x, v, inv_mass, gravity, drag, springs, params, h, settings.cg_tolerance,
-                settings.cg_max_iterations, work, coef)
+        smooth_step(settings, x, v, inv_mass, gravity, drag, springs, params, h, work, coef, stats)
         if n_balls > 0:
             _free_ball_flight(x, v, before, before_v, n_net, gravity, h, model.ball_drag, model.wind)
             _net_box(x, n_net, box)
@@ -243,6 +231,6 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, his
         if recorded >= window and _largest_displacement(x, history[slot]) < rest_displacement:
             memory[3] = 1.0
             return OK
-        history[slot] = x
+        copy_rows(history[slot], x)
         memory[0] = recorded + 1
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
