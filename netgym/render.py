@@ -2,11 +2,12 @@
 
 A small NumPy rasteriser with a depth buffer (no GPU, no extra dependency): net strings as
 lines shaded by depth (nearer strings brighter, so the box reads in 3D), poles as thick lines,
-balls as shaded discs, the ground as a checkerboard; anti-aliased by supersampling (the frame
-is drawn at ``supersample`` times the size and averaged down; about 25 ms a 480 x 360 frame at
-the default 2, 5 ms at 1). ``human``
-mode shows the frames in a pygame window (optional extra ``render``; headless with
-``SDL_VIDEODRIVER=dummy``).
+balls as shaded discs, the ground as a checkerboard, the thrower as a stick figure when one is
+filmed (:meth:`Renderer.film`, which also frames the camera on the throw); anti-aliased by
+supersampling (the frame is drawn at ``supersample`` times the size and averaged down; about
+25 ms a 480 x 360 frame at the default 2, 5 ms at 1). ``human`` mode shows the frames in a
+pygame window (optional extra ``render``; headless with ``SDL_VIDEODRIVER=dummy``).
+:func:`caption_frame` writes a line of text on a frame (Pillow, extra ``render``).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import math
 
 import numpy as np
 
+from netgym.framing import Figure, flight_points, frame_points, side_view, thrower_figure
 from netgym.physics.simulator import Simulator
 
 SKY_TOP = np.array([150, 190, 235], dtype=np.float64)
@@ -25,6 +27,10 @@ NET = np.array([245, 245, 245], dtype=np.float64)
 NET_FAR_SHADE = 0.55          # brightness of the farthest net string relative to the nearest
 POLE = np.array([200, 40, 40], dtype=np.float64)
 BALL = np.array([240, 140, 30], dtype=np.float64)
+THROWER = np.array([40, 60, 170], dtype=np.float64)
+FOV = 50.0                    # degrees, vertical field of view of the scene cameras
+CAPTION_BOX = (20, 20, 20)
+CAPTION_TEXT = (255, 255, 255)
 
 
 class Camera:
@@ -70,7 +76,39 @@ def scene_camera(sim: Simulator, width: int, height: int) -> Camera:
         direction = 1.2 * normal + np.array([0.3, -0.6, 0.5])
     direction /= np.linalg.norm(direction)
     distance = 1.7 * float(np.linalg.norm(upper - lower))
-    return Camera(target + distance * direction, target, width, height)
+    return Camera(target + distance * direction, target, width, height, FOV)
+
+
+def throw_camera(sim: Simulator, release: np.ndarray, velocity: np.ndarray | None, width: int,
+                 height: int) -> Camera:
+    """A camera that sees the throw from ``release`` side-on: the net, the thrower's figure and
+    the ball's flight (``velocity``: its launch velocity; None: no flight yet) up to the far
+    side of the net, the apex included."""
+    lower, upper = np.array(sim.config.net.lower), np.array(sim.config.net.upper)
+    corners = np.array([[x, y, z] for x in (lower[0], upper[0]) for y in (lower[1], upper[1])
+                        for z in (0.0, upper[2])])
+    centre = sim.opening.centre
+    points = [corners, thrower_figure(release, centre).points]
+    if velocity is not None:
+        reach = float(np.linalg.norm((centre - release)[:2])) + 0.5 * float(np.linalg.norm((upper - lower)[:2]))
+        points.append(flight_points(release, velocity, sim.model.gravity, reach, sim.model.ball_radius))
+    eye, target = frame_points(np.vstack(points), side_view(release, centre), width / height, FOV)
+    return Camera(eye, target, width, height, FOV)
+
+
+def caption_frame(frame: np.ndarray, text: str) -> np.ndarray:
+    """A copy of ``frame`` with ``text`` written at its top left on a dark box (unchanged if empty)."""
+    if not text:
+        return frame
+    from PIL import Image, ImageDraw, ImageFont
+
+    image = Image.fromarray(frame)
+    draw = ImageDraw.Draw(image)
+    font = ImageFont.load_default(size=max(10, frame.shape[0] // 24))
+    left, top, right, bottom = draw.textbbox((8, 6), text, font=font)
+    draw.rectangle((left - 5, top - 4, right + 5, bottom + 4), fill=CAPTION_BOX)
+    draw.text((8, 6), text, fill=CAPTION_TEXT, font=font)
+    return np.asarray(image)
 
 
 def _background(camera: Camera) -> np.ndarray:
@@ -99,6 +137,8 @@ class Renderer:
         self.size = (width, height)
         self.look(scene_camera(sim, width * supersample, height * supersample))
         self.human, self.fps = human, fps
+        self.figure: Figure | None = None
+        self._filmed: tuple | None = None
         self._window = None
         self._clock = None
 
@@ -107,10 +147,22 @@ class Renderer:
         self.camera = camera
         self.background = _background(camera)
 
-    def look_from(self, eye: np.ndarray, target: np.ndarray, fov: float = 50.0) -> None:
+    def look_from(self, eye: np.ndarray, target: np.ndarray, fov: float = FOV) -> None:
         """Draw from ``eye`` towards ``target`` from now on."""
         width, height = self.size
         self.look(Camera(eye, target, width * self.supersample, height * self.supersample, fov))
+
+    def film(self, sim: Simulator, release: np.ndarray, velocity: np.ndarray | None = None) -> None:
+        """Film the throw from ``release`` from now on: draw the thrower there, facing the
+        opening, and frame the camera on it (:func:`throw_camera`; ``velocity``: the launch
+        velocity, None before the launch). Filming the same throw again changes nothing."""
+        key = (tuple(release), None if velocity is None else tuple(velocity))
+        if key == self._filmed:
+            return
+        width, height = self.size
+        self.look(throw_camera(sim, release, velocity, width * self.supersample, height * self.supersample))
+        self.figure = thrower_figure(release, sim.opening.centre)
+        self._filmed = key
 
     def _line_fragments(self, a: np.ndarray, b: np.ndarray, colour: np.ndarray, thickness: int):
         pa, da = self.camera.project(a)
@@ -135,7 +187,7 @@ class Renderer:
         return (np.concatenate(xs), np.concatenate(ys), np.concatenate(ds),
                 np.broadcast_to(colour, (sum(len(x) for x in xs), 3)))
 
-    def _ball_fragments(self, centres: np.ndarray, radius: float):
+    def _ball_fragments(self, centres: np.ndarray, radius: float, colour: np.ndarray = BALL):
         pixels, depth = self.camera.project(centres)
         out = []
         for (cx, cy), d in zip(pixels, depth):
@@ -148,7 +200,7 @@ class Renderer:
             nx, ny = gx[inside] / rp, gy[inside] / rp
             nz = np.sqrt(np.clip(1 - nx * nx - ny * ny, 0.0, 1.0))
             shade = np.clip(0.35 + 0.65 * (-0.4 * nx - 0.5 * ny + 0.77 * nz), 0.0, 1.0)
-            out.append((cx + gx[inside], cy + gy[inside], d - radius * nz, BALL * shade[:, None]))
+            out.append((cx + gx[inside], cy + gy[inside], d - radius * nz, colour * shade[:, None]))
         if not out:
             return None
         return tuple(np.concatenate(parts) for parts in zip(*out))
@@ -163,6 +215,10 @@ class Renderer:
             net = (*net[:3], NET * (1.0 - (1.0 - NET_FAR_SHADE) * far)[:, None])
         fragments = [net, self._line_fragments(m.poles[:, :3], m.poles[:, 3:6], POLE, 2 * k),
                      self._ball_fragments(x[m.n_net:], m.ball_radius)]
+        if self.figure is not None:
+            limbs = self.figure.segments
+            fragments += [self._line_fragments(limbs[:, 0], limbs[:, 1], THROWER, 2 * k),
+                          self._ball_fragments(self.figure.head[None], self.figure.head_radius, THROWER)]
         image = self.background.copy()
         parts = [f for f in fragments if f is not None]
         if parts:

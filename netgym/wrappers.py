@@ -9,54 +9,61 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from netgym.video import write_video
+from netgym.video import EpisodeFilm
+
+VIDEO_MODES = {"mp4": "rgb_array_list", "gif": "rgb_array_list", "html": "replay_list"}  # format: render mode
 
 
 class RecordEpisodeVideo(gym.Wrapper):
     """Write a video of every episode ``episode_trigger(episode_index)`` selects (default: all),
     with every frame of every throw: NetCatch's ``rgb_array_list`` frames, ``1 / render_fps``
-    simulated seconds apart, so the video plays at the simulation's pace.
+    simulated seconds apart, so the video plays at the simulation's pace, each captioned with
+    its throw and outcome (:class:`~netgym.video.EpisodeFilm`).
 
     Gymnasium's ``RecordVideo`` keeps one frame per step, and a NetCatch step is a whole throw;
     this wrapper keeps them all. Videos go to ``video_folder/{name_prefix}-episode-{i}.mp4``
-    (``video_format="gif"`` for GIFs), written when the episode ends.
+    (``video_format="gif"`` for GIFs, ``"html"`` for a 3D page you can turn), written when the
+    episode ends.
 
-    :param env: an env made with ``render_mode="rgb_array_list"``.
+    :param env: an env made with ``render_mode="rgb_array_list"`` (``"replay_list"`` for ``html``).
     """
 
     def __init__(self, env: gym.Env, video_folder: str | Path, episode_trigger: Callable[[int], bool] | None = None,
                  name_prefix: str = "netcatch", video_format: str = "mp4") -> None:
         super().__init__(env)
-        if env.render_mode != "rgb_array_list":
-            raise ValueError(f"RecordEpisodeVideo needs render_mode='rgb_array_list', got {env.render_mode!r}")
-        if video_format not in ("mp4", "gif"):
-            raise ValueError(f"video_format = {video_format!r}; allowed: 'mp4' or 'gif'")
+        if video_format not in VIDEO_MODES:
+            raise ValueError(f"video_format = {video_format!r}; allowed: {list(VIDEO_MODES)}")
+        if env.render_mode != VIDEO_MODES[video_format]:
+            raise ValueError(f"RecordEpisodeVideo(video_format={video_format!r}) needs "
+                             f"render_mode={VIDEO_MODES[video_format]!r}, got {env.render_mode!r}")
         self.video_folder = Path(video_folder)
         self.episode_trigger = episode_trigger or (lambda episode: True)
         self.name_prefix, self.video_format = name_prefix, video_format
         self.episode = -1
         self.written: list[Path] = []
-        self._frames: list[np.ndarray] | None = None
+        self._film: EpisodeFilm | None = None
 
     def reset(self, **kwargs: Any) -> tuple[Any, dict]:
         """Reset; start collecting frames if this episode is to be recorded."""
         obs, info = self.env.reset(**kwargs)
         self.episode += 1
-        self._frames = list(self.env.render()) if self.episode_trigger(self.episode) else None
-        if self._frames is None:
-            self.env.render()  # hand out (and drop) the reset frame
+        frames = self.env.render()  # the reset frame, handed out (and dropped when not recorded)
+        self._film = None
+        if self.episode_trigger(self.episode):
+            self._film = EpisodeFilm(self.env.unwrapped.balls_per_episode, self.env.metadata["render_fps"])
+            self._film.start(frames)
         return obs, info
 
     def step(self, action: Any) -> tuple[Any, float, bool, bool, dict]:
         """Step; keep the throw's frames; write the video when the episode ends."""
         obs, reward, terminated, truncated, info = self.env.step(action)
         frames = self.env.render()
-        if self._frames is not None:
-            self._frames += frames
+        if self._film is not None:
+            self._film.add_throw(frames, info)
             if terminated or truncated:
                 path = self.video_folder / f"{self.name_prefix}-episode-{self.episode}.{self.video_format}"
-                self.written.append(write_video(self._frames, path, self.env.metadata["render_fps"]))
-                self._frames = None
+                self.written.append(self._film.write(path))
+                self._film = None
         return obs, reward, terminated, truncated, info
 
 

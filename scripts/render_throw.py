@@ -1,12 +1,18 @@
-"""Render throws of NetCatch-v0 to an MP4 or animated GIF (or a PNG still with ``--still``).
+"""Render an episode of NetCatch-v0 to an MP4, an animated GIF, a 3D page you can turn (.html),
+or a PNG still with ``--still``; the output's suffix picks the format.
 
 Every throw is filmed from its launch to its decision (misses decided at launch fly on to the
 ground), frames ``1 / render_fps`` simulated seconds apart, so the video runs at the
-simulation's pace; ``--settling`` also films the net coming to rest between throws.
+simulation's pace, and then the net settling for the next throw (``--no-settling``: not
+filmed); the last frame of each throw is held half a second. The camera frames each throw
+side-on (the thrower, the flight, the net); each frame says which throw it is and, once
+decided, its outcome. The ``.html`` page shows the episode in 3D (plotly): orbit and zoom,
+play/pause, a time slider.
 
 Usage::
 
     python scripts/render_throw.py --output docs/throw.gif                  # three oracle throws
+    python scripts/render_throw.py --output episode.html                    # the same in 3D
     python scripts/render_throw.py --policy agents/pretrained/ppo_netcatch.zip --output ppo.mp4
     python scripts/render_throw.py --scene goal --policy random --throws 5 --output goal.mp4
 """
@@ -17,30 +23,32 @@ import argparse
 from pathlib import Path
 
 import gymnasium as gym
-import numpy as np
 from PIL import Image
 
 import netgym  # noqa: F401  (registers NetCatch-v0)
 from agents.policies import SB3_ALGORITHMS, load_policy
-from netgym.video import write_video
+from netgym.render import caption_frame
+from netgym.video import FORMATS, EpisodeFilm
 
 
-def record(scene: str, seed: int, throws: int, policy: str, algorithm: str = "PPO",
-           settling: bool = False) -> list[np.ndarray]:
-    """Frames of one episode of ``throws`` throws by ``policy`` (``oracle``, ``random`` or a saved model)."""
-    env = gym.make("NetCatch-v0", scene=scene, balls_per_episode=throws, render_mode="rgb_array_list",
+def record(scene: str, seed: int, throws: int, policy: str, algorithm: str = "PPO", settling: bool = True,
+           render_mode: str = "rgb_array_list") -> EpisodeFilm:
+    """The film of one episode of ``throws`` throws by ``policy`` (``oracle``, ``random`` or a
+    saved model): images (``render_mode="rgb_array_list"``) or 3D snapshots (``"replay_list"``)."""
+    env = gym.make("NetCatch-v0", scene=scene, balls_per_episode=throws, render_mode=render_mode,
                    render_settling=settling)
     agent = load_policy(policy, scene, algorithm)
+    film = EpisodeFilm(throws, env.metadata["render_fps"])
     obs, _ = env.reset(seed=seed)
-    frames = list(env.render())
+    film.start(env.render())
     for _ in range(throws):
         obs, reward, terminated, _, info = env.step(agent.predict(obs, deterministic=True)[0])
         throw_frames = env.render()
-        frames += throw_frames
-        print(f"throw: {'captured' if info['captured'] else 'missed'} ({info['reason']}, "
+        film.add_throw(throw_frames, info)
+        print(f"throw {film.done}/{throws}: {'captured' if info['captured'] else 'missed'} ({info['reason']}, "
               f"{info['sim_time']:.2f} s simulated, {info['substeps']} substeps, {len(throw_frames)} frames)")
     env.close()
-    return frames
+    return film
 
 
 def main() -> None:
@@ -51,17 +59,24 @@ def main() -> None:
     parser.add_argument("--throws", type=int, default=3)
     parser.add_argument("--policy", default="oracle", help="oracle, random or the path of a saved SB3 model (.zip)")
     parser.add_argument("--algorithm", default="PPO", choices=SB3_ALGORITHMS, help="the SB3 algorithm of a saved model")
-    parser.add_argument("--settling", action="store_true", help="also film the net settling between throws")
-    parser.add_argument("--output", type=Path, default=Path("throw.mp4"), help=".mp4 or .gif")
+    parser.add_argument("--settling", action=argparse.BooleanOptionalAction, default=True,
+                        help="film the net settling between throws (default: yes)")
+    parser.add_argument("--output", type=Path, default=Path("throw.mp4"), help=" or ".join(FORMATS))
     parser.add_argument("--still", action="store_true", help="write only the last frame as a PNG")
     args = parser.parse_args()
-    frames = record(args.scene, args.seed, args.throws, args.policy, args.algorithm, args.settling)
+    suffix = args.output.suffix.lower()
+    if args.still and suffix != ".png":
+        parser.error(f"--still writes a PNG: --output must end in .png, got {str(args.output)!r}")
+    if not args.still and suffix not in FORMATS:
+        parser.error(f"--output {str(args.output)!r}: the suffix must be one of {list(FORMATS)} (or .png with --still)")
+    render_mode = "replay_list" if suffix == ".html" else "rgb_array_list"
+    film = record(args.scene, args.seed, args.throws, args.policy, args.algorithm, args.settling, render_mode)
     if args.still:
         args.output.parent.mkdir(parents=True, exist_ok=True)
-        Image.fromarray(frames[-1]).save(args.output)
+        Image.fromarray(caption_frame(film.frames[-1], film.captions[-1])).save(args.output)
     else:
-        write_video(frames, args.output, gym.make("NetCatch-v0").metadata["render_fps"])
-    print(f"wrote {args.output} ({len(frames)} frames)")
+        film.write(args.output)
+    print(f"wrote {args.output} ({len(film.frames)} frames, {args.output.stat().st_size / 1e6:.1f} MB)")
 
 
 if __name__ == "__main__":

@@ -155,7 +155,7 @@ def test_pickle_round_trip_and_double_close() -> None:
 
 def test_metadata_declares_render_fps_and_modes() -> None:
     assert NetCatchEnv.metadata["render_fps"] > 0
-    assert set(NetCatchEnv.metadata["render_modes"]) == {"human", "rgb_array", "rgb_array_list"}
+    assert set(NetCatchEnv.metadata["render_modes"]) == {"human", "rgb_array", "rgb_array_list", "replay_list"}
 
 
 def test_works_in_stable_baselines3_subprocess_vec_env() -> None:

@@ -30,10 +30,17 @@ def test_rgb_array_frame(scene: str) -> None:
     grey = (rgb.min(axis=-1) > 150) & (np.ptp(rgb, axis=-1) < 20)
     assert np.sum(grey) > 500
     assert np.sum((rgb[..., 0] > 150) & (rgb[..., 1] < 90) & (rgb[..., 2] < 90)) > 100
+    thrower = (rgb[..., 2] > 120) & (rgb[..., 0] < 90) & (rgb[..., 1] < 110)
+    assert np.sum(thrower) > 50  # the thrower's figure, in blue
     empty = frame.copy()
-    env.unwrapped.sim.launch_ball(env.unwrapped.sim.model.geometry.positions.mean(axis=0), [0.0, 0.0, 0.0])
+    sim = env.unwrapped.sim
+    centre = sim.model.geometry.positions.mean(axis=0)
+    sim.launch_ball(centre, [0.0, 0.0, 0.0])
     with_ball = env.render()
-    assert np.sum(np.any(with_ball != empty, axis=-1)) > 50  # the ball shows
+    camera = env.unwrapped._renderer.camera
+    _, depth = camera.project(centre[None])
+    disc = math.pi * (camera.focal * sim.model.ball_radius / depth[0]) ** 2 / env.unwrapped._renderer.supersample ** 2
+    assert np.sum(np.any(with_ball != empty, axis=-1)) > 0.5 * disc  # the ball shows (behind the net's strings)
     assert (h, w) == (360, 480)
     env.close()
 
@@ -48,6 +55,56 @@ def test_rgb_array_list_holds_the_frames_of_a_throw() -> None:
     assert len(frames) >= 0.8 * expected
     assert all(f.shape == (360, 480, 3) and f.dtype == np.uint8 for f in frames)
     assert env.render() == []  # frames are handed out once
+
+
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+def test_the_camera_follows_a_high_throw_to_the_net(scene: str) -> None:
+    """The frames of a throw frame its whole flight up to the net: a lob at the top speed and
+    elevation of the scene's ranges from the farthest thrower stays in the picture (with the
+    thrower) until it is past the net."""
+    from netgym.framing import thrower_figure
+    from netgym.render import throw_camera
+
+    env = gym.make("NetCatch-v0", scene=scene, render_mode="replay_list").unwrapped
+    t = env.scene.throw
+    env.reset(seed=0, options={"thrower": {"distance": t.distance[1]}})
+    launch = env.thrower.position
+    _, _, _, _, info = env.step(np.array([1.0, 1.0, 0.0], dtype=np.float32))
+    snapshots = env.render()
+    camera = throw_camera(env.sim, launch, info["launch_velocity"], 480, 360)
+    centre = env.sim.opening.centre
+    past = float(np.linalg.norm((centre - launch)[:2])) + 0.5 * float(np.linalg.norm(
+        np.subtract(env.scene.net.upper, env.scene.net.lower)[:2]))
+    flight = np.array([s.balls[-1] for s in snapshots if len(s.balls)])
+    flight = flight[np.linalg.norm((flight - launch)[:, :2], axis=1) <= past]
+    assert len(flight) > 10 and flight[:, 2].max() > 5.0  # a high throw, filmed
+    points = np.vstack([flight, thrower_figure(launch, centre).points])
+    pixels, depth = camera.project(points)
+    assert np.all(depth > 0) and np.all((pixels >= 0) & (pixels <= [480, 360]))
+    env.close()
+
+
+def test_captions_name_the_throw_and_its_outcome_once_decided() -> None:
+    """EpisodeFilm captions every frame of a throw with its number, and with its outcome from
+    the frame of its decision on; it holds the last frame; caption_frame writes the text."""
+    from netgym.render import caption_frame
+    from netgym.video import HOLD, EpisodeFilm
+
+    fps = NetCatchEnv.metadata["render_fps"]
+    film = EpisodeFilm(2, fps)
+    film.start(["reset"])
+    film.add_throw([f"a{i}" for i in range(30)], {"captured": True, "reason": "at_rest", "sim_time": 0.5})
+    film.add_throw([f"b{i}" for i in range(10)], {"captured": False, "reason": "flies_away", "sim_time": 0.0})
+    held = round(HOLD * fps)
+    assert film.frames == ["reset"] + [f"a{i}" for i in range(30)] + ["a29"] * held + \
+        [f"b{i}" for i in range(10)] + ["b9"] * held
+    assert film.captions[:16] == ["throw 1/2"] * 16                  # the reset and 0.5 s of flight
+    assert set(film.captions[16:31 + held]) == {"throw 1/2: caught (at rest)"}
+    assert set(film.captions[31 + held:]) == {"throw 2/2: missed (flies away)"}
+    frame = np.full((360, 480, 3), 128, dtype=np.uint8)
+    captioned = caption_frame(frame, film.captions[-1])
+    assert captioned.shape == frame.shape and np.any(captioned[:30, :200] != 128)
+    assert np.array_equal(captioned[60:], frame[60:]) and caption_frame(frame, "") is frame
 
 
 def test_human_mode_runs_headless() -> None:
@@ -124,8 +181,9 @@ def test_frames_are_one_period_apart() -> None:
 
 
 def test_recorded_episode_video_holds_every_throw_at_render_fps(tmp_path) -> None:
-    """RecordEpisodeVideo writes an MP4 per episode with every frame of every throw: its length
-    is at least the simulated time of the throws at render_fps, played at render_fps."""
+    """RecordEpisodeVideo writes an MP4 per episode with every frame of every throw (and each
+    throw's last frame held): its length is at least the simulated time of the throws at
+    render_fps, played at render_fps."""
     imageio = pytest.importorskip("imageio.v2")
     from netgym.wrappers import RecordEpisodeVideo
 

@@ -21,8 +21,10 @@ from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_mi
 from netgym.physics.frames import FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
+from netgym.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
+FILMED_MODES = ("human", "rgb_array_list", "replay_list")   # render modes that take every frame of a throw
 RESET_OPTIONS = ("overrides", "thrower")
 
 
@@ -135,7 +137,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``dt`` | scene's | integration step (s) |
     | ``balls_per_episode`` | 3 | throws per episode |
     | ``reward_mode`` | ``"sparse"`` | ``"sparse"`` or ``"shaped"`` |
-    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"`` |
+    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"``, ``"replay_list"`` (3D positions instead of pixels: :mod:`netgym.replay`) |
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
     | ``render_settling`` | False | ``rgb_array_list``/``human``: also film the net settling between throws |
@@ -165,7 +167,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     - ``NetCatchWindy-v0`` and ``NetCatchNoisy-v0``: new in netgym 0.1.
     """
 
-    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list", "replay_list"], "render_fps": 30}
 
     def __init__(self, scene: str | Path | SceneConfig = "basket", integrator: str | None = None,
                  dt: float | None = None, balls_per_episode: int = 3, reward_mode: str = "sparse",
@@ -208,7 +210,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self.fast = bool(fast)
         self.render_settling = bool(render_settling)
         self._frame_clock = (FrameClock(1.0 / self.metadata["render_fps"])
-                             if render_mode in ("human", "rgb_array_list") else None)
+                             if render_mode in FILMED_MODES else None)
         self._centre = self.sim.opening.centre
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
@@ -221,7 +223,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._throws_done = 0
         self._caught = 0
         self._renderer = None
-        self._frames: list[np.ndarray] = []
+        self._scenery: Scenery | None = None
+        self._flight: np.ndarray | None = None   # launch velocity of the throw being simulated
+        self._frames: list[np.ndarray] | list[Snapshot] = []
 
     # ------------------------------------------------------------------ spaces
     def _observation(self) -> np.ndarray:
@@ -277,6 +281,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if "thrower" in options:
             self.thrower = dataclasses.replace(self.thrower, **options["thrower"])
         self._frames = []
+        self._flight = None
         if self._frame_clock is not None:
             self._frame_clock.restart(self.sim.state.time)
             self._record_frame(self.sim)
@@ -325,6 +330,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError("these overrides change the observation space's bounds (the net's geometry or the "
                              "ball radius); make a new env with them instead")
         self.sim, self.scene, self._centre, self._floor = sim, config, centre, floor
+        self._scenery = None
         self.close()  # the renderer's camera and frames belong to the old scene
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict]:
@@ -339,6 +345,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         velocity = aimed if self.launch_noise is None else \
             launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
+        self._flight = velocity
         observer = self._record_frame if self._frame_clock is not None else None
         result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frames=self._frame_clock,
                                 settle_frames=self.render_settling)
@@ -387,6 +394,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._ended = terminated
         if not terminated:
             self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
+        self._flight = None
         info = {"captured": result.captured, "reason": result.reason,
                 "final_position": result.final_position, "sim_time": result.time,
                 "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
@@ -408,28 +416,39 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def _record_frame(self, sim: Simulator) -> None:
         assert self._frame_clock is not None
-        if self._frame_clock.take(sim.state.time, 0.5 * sim.dt + 1e-9):
-            renderer = self._get_renderer()
-            frame = renderer.draw(sim)
-            if self.render_mode == "rgb_array_list":
-                self._frames.append(frame)
-            else:
-                renderer.show(frame)
+        if not self._frame_clock.take(sim.state.time, 0.5 * sim.dt + 1e-9):
+            return
+        if self.render_mode == "replay_list":
+            if self._scenery is None:
+                self._scenery = Scenery.of(sim)
+            thrower = None if self.thrower is None else self.thrower.position
+            self._frames.append(Snapshot.of(sim, self._scenery, thrower))
+        elif self.render_mode == "rgb_array_list":
+            self._frames.append(self._draw())
+        else:
+            self._get_renderer().show(self._draw())
+
+    def _draw(self) -> np.ndarray:
+        """A frame of the scene now, with the thrower, the camera framing the current throw."""
+        renderer = self._get_renderer()
+        if self.thrower is not None:
+            renderer.film(self.sim, self.thrower.position, self._flight)
+        return renderer.draw(self.sim)
 
     def _renderer_show(self) -> None:
-        renderer = self._get_renderer()
-        renderer.show(renderer.draw(self.sim))
+        self._get_renderer().show(self._draw())
 
-    def render(self) -> np.ndarray | list[np.ndarray] | None:
+    def render(self) -> np.ndarray | list[np.ndarray] | list[Snapshot] | None:
         """``rgb_array``: the current frame (H, W, 3) uint8; ``rgb_array_list``: the frames since
-        the last render or reset; ``human``: shows the current frame, returns None."""
+        the last render or reset; ``replay_list``: the :class:`~netgym.replay.Snapshot` of each of
+        those instants; ``human``: shows the current frame, returns None. Frames show the current
+        thrower and follow the throw being simulated."""
         if self.render_mode is None:
             gym.logger.warn("render() called without a render_mode; pass render_mode to make()")
             return None
-        renderer = self._get_renderer()
         if self.render_mode == "rgb_array":
-            return renderer.draw(self.sim)
-        if self.render_mode == "rgb_array_list":
+            return self._draw()
+        if self.render_mode in ("rgb_array_list", "replay_list"):
             frames, self._frames = self._frames, []
             return frames
         self._renderer_show()
