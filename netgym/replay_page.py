@@ -27,7 +27,7 @@ BALL_COLOUR = "rgb(240, 140, 30)"
 THROWER_COLOUR = "rgb(40, 60, 170)"
 GROUND_COLOUR = "rgb(96, 150, 88)"
 SKY_COLOUR = "rgb(215, 230, 245)"
-EYE_DISTANCE = 1.4      # of the scene box's longest side, from its centre
+EYE_DISTANCE = 0.9      # of the scene box's longest side, from its centre
 MOVING_TRACES = [2, 3, 4, 5]   # net, balls, thrower's limbs, thrower's head; 0 and 1 (ground, poles) stay
 
 

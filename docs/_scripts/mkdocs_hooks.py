@@ -1,12 +1,17 @@
 """MkDocs hooks of the docs site: the env cards (``docs/environments/``) must be those
-``env_cards.py`` makes from the code, or the build fails; each card is listed in the navigation."""
+``env_cards.py`` makes from the code, or the build fails; each card is listed in the navigation;
+the replay page the docs embed is made from the code at each build."""
 
 from __future__ import annotations
 
 import importlib.util
+import subprocess
+import sys
 from pathlib import Path
 
 from mkdocs.exceptions import PluginError
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _env_cards():
@@ -34,3 +39,13 @@ def on_pre_build(config) -> None:
     stale = _env_cards().stale_pages()
     if stale:
         raise PluginError(f"env cards out of date: {', '.join(stale)}; run python docs/_scripts/env_cards.py")
+
+
+def on_post_build(config) -> None:
+    """Write the embedded replay (``episode.html`` at the site's root): the oracle's episode of
+    ``scripts/render_throw.py``'s defaults."""
+    output = Path(config["site_dir"]) / "episode.html"
+    result = subprocess.run([sys.executable, str(ROOT / "scripts" / "render_throw.py"), "--output", str(output)],
+                            cwd=ROOT, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise PluginError(f"the replay could not be made:\n{result.stderr[-2000:]}")

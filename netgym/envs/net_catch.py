@@ -149,10 +149,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     ## Registered ids
 
-    ``NetCatch-v0`` (these defaults), ``NetCatchGoal-v0`` (``scene="goal"``),
-    ``NetCatchLongEpisode-v0`` (``balls_per_episode=10``), ``NetCatchWindy-v0`` (air, a hidden
-    wind of 0-3 m/s per episode, 5 throws, feedback) and ``NetCatchNoisy-v0`` (launch noise);
-    see :mod:`netgym`.
+    Every id in :data:`netgym.ENVIRONMENTS` (the defaults above, or a variant's arguments); each
+    has its card in the docs, generated from this docstring and the id's registration.
 
     ## Version History
 
@@ -164,7 +162,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
       ``info`` books the settling pause.
       Options added without changing v0's dynamics: ``reset(options=...)``, ``render_settling``,
       and the variation arguments ``wind``, ``launch_noise``, ``feedback`` (off by default).
-    - ``NetCatchWindy-v0`` and ``NetCatchNoisy-v0``: new in netgym 0.1.
+    - ``NetCatchWindy-v0``, ``NetCatchNoisy-v0``, ``NetCatchRandomized-v0`` and
+      ``NetCatchPixels-v0``: new in netgym 0.1.
     """
 
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list", "replay_list"], "render_fps": 30}
