@@ -24,8 +24,8 @@ def main() -> None:
     args = parser.parse_args()
     print(f"| {args.env} | empty numba cache (s) | cached kernels (s) |\n|---|---:|---:|")
     for run in range(1, args.repeats + 1):
-        times = cold_and_warm(args.env)
-        print(f"| run {run} | {times['cold']:.1f} | {times['warm']:.1f} |", flush=True)
+        cold, warm = cold_and_warm(args.env)
+        print(f"| run {run} | {cold.seconds:.1f} | {warm.seconds:.1f} |", flush=True)
 
 
 if __name__ == "__main__":
