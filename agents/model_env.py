@@ -16,7 +16,7 @@ from typing import Any
 import gymnasium as gym
 from gymnasium import spaces
 
-import netgym  # noqa: F401  (registers the NetCatch ids)
+import netgym
 
 DEFAULT_ENV = "NetCatch-v0"
 SAVED_AS = "netgym_env"
@@ -49,15 +49,10 @@ def saved_env(model: Any) -> ModelEnv | None:
     return None if record is None else ModelEnv(**record)
 
 
-def netcatch_ids() -> list[str]:
-    """Every registered id whose env netgym makes."""
-    return [env_id for env_id, spec in gym.registry.items() if str(spec.entry_point).startswith("netgym.")]
-
-
 def check_registered(env_id: str) -> None:
     """Raise ValueError unless ``env_id`` is a registered NetCatch id."""
-    if env_id not in netcatch_ids():
-        raise ValueError(f"env {env_id!r} is not a registered NetCatch id; one of {netcatch_ids()}")
+    if env_id not in netgym.ENVIRONMENTS:
+        raise ValueError(f"env {env_id!r} is not a registered NetCatch id; one of {list(netgym.ENVIRONMENTS)}")
 
 
 @functools.cache
@@ -104,7 +99,7 @@ def model_env(model: Any, env_id: str | None = None, name: str = "the model") ->
 
 
 def _matching_env(model: Any, name: str) -> ModelEnv:
-    fitting = [ModelEnv(env_id, frames) for env_id in netcatch_ids()
+    fitting = [ModelEnv(env_id, frames) for env_id in netgym.ENVIRONMENTS
                if (frames := frames_fitting(model.observation_space, observation_space(env_id)))]
     default = [found for found in fitting if found.env_id == DEFAULT_ENV]
     if default or len(fitting) == 1:
