@@ -1,4 +1,5 @@
-"""Load a policy by name: a saved Stable-Baselines3 model, ``oracle`` or ``random``."""
+"""Load a policy by name: a saved Stable-Baselines3 model, an RLlib checkpoint folder, ``oracle``
+or ``random``."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from agents.evaluation import Policy
 from agents.model_env import DEFAULT_ENV, check_registered, model_env, observation_space
 from agents.oracle import BallisticOracle
 from agents.random_agent import RandomAgent
+from agents.rllib_policy import RLlibPolicy, is_rllib_checkpoint
 from netgym.envs import NetCatchEnv
 
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
@@ -25,16 +27,19 @@ TRAIN_EXTRA = 'Stable-Baselines3 and torch: pip install torch==2.13.0 && pip ins
 
 
 def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO") -> Policy:
-    """``"oracle"``, ``"random"`` or the path of a model saved by Stable-Baselines3's
-    ``algorithm`` (one of SB3_ALGORITHMS)."""
+    """``"oracle"``, ``"random"``, the folder of an RLlib checkpoint (``scripts/train_rllib.py``)
+    or the path of a model saved by Stable-Baselines3's ``algorithm`` (one of SB3_ALGORITHMS)."""
     if str(name) == "oracle":
         return BallisticOracle.from_scene(scene)
     if str(name) == "random":
         return RandomAgent(0)
+    if is_rllib_checkpoint(name):
+        return RLlibPolicy(name)
     if algorithm.upper() not in SB3_ALGORITHMS:
         raise ValueError(f"algorithm = {algorithm!r} is not one of {list(SB3_ALGORITHMS)}")
     if not Path(name).is_file():
-        raise FileNotFoundError(f"policy {str(name)!r} is neither 'oracle', 'random' nor a saved model file")
+        raise FileNotFoundError(f"policy {str(name)!r} is neither 'oracle', 'random', a saved model file nor an RLlib "
+                                f"checkpoint folder")
     try:
         import stable_baselines3
     except ImportError as missing:

@@ -1,14 +1,16 @@
-"""Capture rate of a saved PPO model, the ballistic oracle or the random policy on a registered
-NetCatch env.
+"""Capture rate of a saved PPO model, an RLlib checkpoint, the ballistic oracle or the random
+policy on a registered NetCatch env.
 
 A saved model is evaluated on the env it was trained on (saved with it by
-``scripts/train_ppo.py``), with its stack of observations, unless ``--env`` names another whose
-observations it reads; the oracle and the random policy on NetCatch-v0 unless ``--env`` says.
+``scripts/train_ppo.py``; an RLlib checkpoint folder, ``scripts/train_rllib.py``'s, records it
+too), with its stack of observations, unless ``--env`` names another whose observations it
+reads; the oracle and the random policy on NetCatch-v0 unless ``--env`` says.
 
 Usage::
 
     python scripts/evaluate.py agents/pretrained/ppo_netcatch.zip --episodes 1000
     python scripts/evaluate.py agents/pretrained/ppo_windy_stack5.zip      # on NetCatchWindy-v0
+    python scripts/evaluate.py runs/rllib                                  # an RLlib checkpoint (extra rllib)
     python scripts/evaluate.py oracle --env NetCatchWindy-v0 --episodes 1000
     python scripts/evaluate.py random --scene goal
 """
@@ -25,7 +27,8 @@ from agents.policies import SB3_ALGORITHMS, policy_in_env
 def main() -> None:
     """Parse arguments, evaluate, print the rate with its 95% confidence interval."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("policy", help="path of a saved SB3 model (.zip), 'oracle' or 'random'")
+    parser.add_argument("policy", help="path of a saved SB3 model (.zip), an RLlib checkpoint folder, "
+                        "'oracle' or 'random'")
     parser.add_argument("--env", help="registered NetCatch id (default: the model's own, else NetCatch-v0)")
     parser.add_argument("--episodes", type=int, default=100)
     parser.add_argument("--seed", type=int, default=10_000, help="episode i uses seed + i")
