@@ -7,7 +7,14 @@ On a Ray cluster the same script spreads the env runners over the machines: inst
 every node (the same ``pip install -e ".[rllib]"``), start the cluster (``ray start --head`` on
 one node, ``ray start --address=HEAD_IP:6379`` on the others, or a cluster launcher), then run
 the script on a node of the cluster with ``--address auto`` and as many ``--env-runners`` as
-the cluster has CPUs to spare (one learner CPU stays on the head).
+the cluster has CPUs to spare (one learner CPU stays on the head). Recipes for a real cluster:
+``deploy/ray-cluster.yaml`` (Ray's cluster launcher) and ``deploy/rayjob.yaml`` (KubeRay).
+
+RLlib's fault tolerance is on: an env runner lost with its node (or its process) is restarted
+as soon as the cluster has a CPU for it, and training goes on with the healthy ones meanwhile.
+The script prints, each iteration, its seconds and the healthy env runners, and where the env
+runners run; ``--summary`` writes the same as JSON. The checkpoint is a policy that
+``scripts/evaluate.py`` evaluates like a saved SB3 model.
 
 Usage::
 
@@ -19,16 +26,19 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import json
+import time
 from pathlib import Path
-
-import ray
-from ray.rllib.algorithms.ppo import PPOConfig
-from ray.tune.registry import register_env
 
 from agents.hyperparams import ENV_KWARGS, PPO_PARAMS, rllib_training  # from agents/hyperparams/ppo.yml
 from netgym.envs import NetCatchEnv
 
 ENV_NAME = "netgym/NetCatch-v0"
+SB3_DEFAULTS = {"use_kl_loss": False, "vf_loss_coeff": 0.5, "grad_clip": 0.5}
+"""Stable-Baselines3's PPO defaults (no KL penalty, value loss weight, gradient norm clip) where
+RLlib's differ: the settings under which ppo.yml's values were tuned."""
+RESTART_DELAY_S = 1.0
+"""Seconds between attempts to restart a lost env runner (RLlib's default is 60)."""
 
 
 def make_env(env_config: dict) -> NetCatchEnv:
@@ -40,19 +50,34 @@ def build(env_runners: int, batch: int, minibatch: int, epochs: int):
     """The PPO algorithm on NetCatch-v0, with the training environment's arguments and the
     settings RLlib shares with SB3 (learning rate, gamma, lambda, entropy coefficient) from
     agents/hyperparams/ppo.yml; ``epochs`` overrides its ``n_epochs``."""
+    from ray.rllib.algorithms.ppo import PPOConfig
+    from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
+    from ray.tune.registry import register_env
+
     register_env(ENV_NAME, make_env)
     config = (
         PPOConfig()
         .environment(ENV_NAME, env_config=dict(ENV_KWARGS))
         .env_runners(num_env_runners=env_runners, num_envs_per_env_runner=1)
+        .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=PPO_PARAMS["policy_kwargs"]["net_arch"]))
         .training(**{**rllib_training(), "num_epochs": epochs}, train_batch_size_per_learner=batch,
-                  minibatch_size=minibatch)
+                  minibatch_size=minibatch, clip_param=PPO_PARAMS["clip_range"], **SB3_DEFAULTS)
+        .fault_tolerance(restart_failed_env_runners=True, delay_between_env_runner_restarts_s=RESTART_DELAY_S,
+                         env_runner_health_probe_timeout_s=10.0)
     )
     return config.build_algo()
 
 
-def main() -> None:
-    """Parse arguments, train, report, save a checkpoint."""
+def env_runner_nodes(algo) -> list[str]:
+    """The Ray node id of each healthy remote env runner, asked of the runners themselves."""
+    import ray
+
+    return algo.env_runner_group.foreach_env_runner(lambda runner: ray.get_runtime_context().get_node_id(),
+                                                    local_env_runner=False)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The command line of this script (the recipes in deploy/ are checked against it)."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--iterations", type=int, default=50)
     parser.add_argument("--env-runners", type=int, default=2)
@@ -60,8 +85,16 @@ def main() -> None:
     parser.add_argument("--address", default=None,
                         help="a running Ray cluster to join ('auto': the one this node belongs to); default: a local Ray")
     parser.add_argument("--out", type=Path, default=Path("runs/rllib"))
+    parser.add_argument("--summary", type=Path, help="write the run's figures here as JSON")
     parser.add_argument("--quick", action="store_true", help="one tiny iteration, for smoke tests")
-    args = parser.parse_args()
+    return parser
+
+
+def main() -> None:
+    """Parse arguments, train, report, save a checkpoint."""
+    args = build_parser().parse_args()
+    import ray  # here, not at the top: the parser is read without the rllib extra (tests, recipes)
+
     if args.quick:
         args.iterations, args.env_runners, args.batch = 1, 2, 64
     NetCatchEnv()  # compile the numba kernels once, before the env runner processes start
@@ -69,20 +102,33 @@ def main() -> None:
         ray.init(num_cpus=args.env_runners + 1, include_dashboard=False, log_to_driver=False)
     else:
         ray.init(address=args.address, log_to_driver=False)
-    print(f"Ray: {ray.cluster_resources().get('CPU', 0):g} CPUs; {args.env_runners} env runners")
+    nodes = [node["NodeID"] for node in ray.nodes() if node["Alive"]]
+    print(f"Ray: {ray.cluster_resources().get('CPU', 0):g} CPUs on {len(nodes)} nodes; {args.env_runners} env runners")
     try:
-        algo = build(args.env_runners, args.batch, min(args.batch, 256), 2 if args.quick else PPO_PARAMS["n_epochs"])
+        algo = build(args.env_runners, args.batch, min(args.batch, PPO_PARAMS["batch_size"]), 2 if args.quick else PPO_PARAMS["n_epochs"])
+        placement = env_runner_nodes(algo)
+        print(f"env runners on nodes: {placement}")
+        iterations = []
         for i in range(args.iterations):
+            start = time.time()
             result = algo.train()
             runners = result.get("env_runners", {})
-            print(f"iteration {i + 1}: env steps {runners.get('num_env_steps_sampled_lifetime')}, "
-                  f"mean episode return {runners.get('episode_return_mean')}, "
-                  f"env runners healthy {algo.env_runner_group.num_healthy_remote_workers()}")
-        path = algo.save(str(args.out.resolve()))
-        print(f"checkpoint: {getattr(path, 'checkpoint', path)}")
+            iterations.append({"end": time.time(), "seconds": time.time() - start,
+                               "env_steps": runners.get("num_env_steps_sampled_lifetime"),
+                               "episode_return_mean": runners.get("episode_return_mean"),
+                               "healthy": algo.env_runner_group.num_healthy_remote_workers()})
+            print(f"iteration {i + 1}: {iterations[-1]['seconds']:.1f} s, env steps {iterations[-1]['env_steps']}, "
+                  f"mean episode return {iterations[-1]['episode_return_mean']}, "
+                  f"env runners healthy {iterations[-1]['healthy']}", flush=True)
+        checkpoint = algo.save_to_path(str(args.out.resolve()))
+        print(f"checkpoint: {checkpoint}")
+        summary = {"nodes": nodes, "env_runner_nodes": placement, "final_env_runner_nodes": env_runner_nodes(algo),
+                   "iterations": iterations, "checkpoint": checkpoint}
         algo.stop()
     finally:
         ray.shutdown()
+    if args.summary is not None:
+        args.summary.write_text(json.dumps(summary, indent=1) + "\n")
 
 
 if __name__ == "__main__":
