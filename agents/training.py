@@ -20,7 +20,7 @@ from agents.hyperparams import ENV_KWARGS, POLICY, PPO_PARAMS  # from agents/hyp
 from agents.model_env import record_env
 from agents.policies import acting_policy
 from agents.run_progress import RunProgress
-from netgym.envs import NetCatchEnv
+from agents.warm_up import compile_kernels
 
 EVAL_SEED = 20_000   # evaluation episodes during training use seeds 20000, 20001, ... (not the final test's)
 
@@ -29,7 +29,7 @@ def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0", frame
     """The vectorised training environment: ``make_vec_env`` with ``SubprocVecEnv`` (one
     process per environment), observations stacked over the last ``frame_stack`` steps
     (``VecFrameStack``) when it is above 1."""
-    NetCatchEnv()  # compile the kernels once before the workers start
+    compile_kernels(env_id, **ENV_KWARGS)  # once, before the workers start
     env = make_vec_env(f"netgym:{env_id}", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
                        env_kwargs=dict(ENV_KWARGS))
     return VecFrameStack(env, frame_stack) if frame_stack > 1 else env

@@ -30,6 +30,7 @@ from agents.evaluation import CaptureRate, evaluate
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
 from agents.policies import PRETRAINED_WINDY, PRETRAINED_WINDY_STACKED, FrameStackPolicy, load_policy
 from agents.random_agent import RandomAgent
+from agents.warm_up import compile_kernels
 from netgym.bench.results import write_results
 
 AGENTS = {
@@ -74,7 +75,7 @@ def main() -> None:
     args = parser.parse_args()
     episodes = 2 if args.quick else args.episodes
     jobs = [(variant, agent, episodes) for variant, agents in VARIANTS.items() for agent in agents]
-    gym.make("NetCatchWindy-v0").reset(seed=0)  # compile the kernels and settle the net before the workers start
+    compile_kernels("NetCatchWindy-v0")  # before the workers start
     with ProcessPoolExecutor(args.workers) as pool:
         rows = list(pool.map(_row, jobs))
     print(f"| variant | agent | capture rate ({episodes} episodes, 95% CI) | throws/s (one process) |")
