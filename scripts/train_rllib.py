@@ -37,6 +37,8 @@ ENV_NAME = "netgym/NetCatch-v0"
 SB3_DEFAULTS = {"use_kl_loss": False, "vf_loss_coeff": 0.5, "grad_clip": 0.5}
 """Stable-Baselines3's PPO defaults (no KL penalty, value loss weight, gradient norm clip) where
 RLlib's differ: the settings under which ppo.yml's values were tuned."""
+HEAD_RESOURCE = "node:__internal_head__"
+"""The resource Ray gives the head node alone."""
 RESTART_DELAY_S = 1.0
 """Seconds between attempts to restart a lost env runner (RLlib's default is 60)."""
 
@@ -103,6 +105,7 @@ def main() -> None:
     else:
         ray.init(address=args.address, log_to_driver=False)
     nodes = [node["NodeID"] for node in ray.nodes() if node["Alive"]]
+    head = next(node["NodeID"] for node in ray.nodes() if node["Alive"] and HEAD_RESOURCE in node["Resources"])
     print(f"Ray: {ray.cluster_resources().get('CPU', 0):g} CPUs on {len(nodes)} nodes; {args.env_runners} env runners")
     try:
         algo = build(args.env_runners, args.batch, min(args.batch, PPO_PARAMS["batch_size"]), 2 if args.quick else PPO_PARAMS["n_epochs"])
@@ -122,7 +125,7 @@ def main() -> None:
                   f"env runners healthy {iterations[-1]['healthy']}", flush=True)
         checkpoint = algo.save_to_path(str(args.out.resolve()))
         print(f"checkpoint: {checkpoint}")
-        summary = {"nodes": nodes, "env_runner_nodes": placement, "final_env_runner_nodes": env_runner_nodes(algo),
+        summary = {"nodes": nodes, "head_node": head, "env_runner_nodes": placement, "final_env_runner_nodes": env_runner_nodes(algo),
                    "iterations": iterations, "checkpoint": checkpoint}
         algo.stop()
     finally:
