@@ -35,7 +35,7 @@ def test_long_settling_shows_progress_and_short_work_stays_quiet() -> None:
 def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> None:
     """The pause between throws stops when no body moved faster than simulation.settle_speed
     over its last 0.1 s, and a looser settle speed stops it sooner."""
-    from netgym.physics.frames import FrameClock
+    from netgym.physics.frames import Film, FrameClock
     from netgym.physics.simulator import RELAX_WINDOW
 
     substeps = {}
@@ -45,7 +45,7 @@ def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> Non
         assert sim.awake
         seen: list[np.ndarray] = []
         every_step = FrameClock(sim.settle_dt, sim.state.time)  # one request per pause step, observed
-        pause = sim.run(sim.pause_plan(every_step, film=True), lambda s: seen.append(s.state.x.copy()))
+        pause = sim.run(sim.pause_plan(), Film(every_step, lambda s: seen.append(s.state.x.copy()), settling=True))
         window = round(RELAX_WINDOW / sim.settle_dt)
         assert len(seen) > window
         assert np.abs(seen[-1] - seen[-1 - window]).max() < speed * RELAX_WINDOW

@@ -13,7 +13,7 @@ import netgym  # noqa: F401
 from agents.oracle import BallisticOracle
 from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
-from netgym.physics.frames import FrameClock
+from netgym.physics.frames import Film, FrameClock
 from netgym.physics.simulator import Simulator
 
 
@@ -166,13 +166,10 @@ def test_frames_are_one_period_apart() -> None:
     clock = FrameClock(1.0 / 30.0)
     taken: list[float] = []
 
-    def observe(s: Simulator) -> None:
-        if clock.take(s.state.time, 0.5 * s.dt + 1e-9):
-            taken.append(s.state.time)
-
+    film = Film(clock, lambda s: taken.append(s.state.time))
     for velocity in ([5.0, 0.0, 6.1], [2.0, 0.0, 3.0]):  # into the opening (caught); short of the net
         taken.clear()
-        result = sim.throw([-5.0, 0.0, 1.8], velocity, observer=observe, frames=clock)
+        result = sim.throw([-5.0, 0.0, 1.8], velocity, observer=film)
         times = np.array(taken) - clock.anchor
         k = np.round(times * 30.0)
         assert np.array_equal(k, np.arange(len(k)))                    # every instant once, from the launch

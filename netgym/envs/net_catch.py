@@ -18,7 +18,7 @@ from netgym.errors import EpisodeEndedError
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
 from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
-from netgym.physics.frames import FrameClock
+from netgym.physics.frames import Film, FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
 from netgym.replay import Scenery, Snapshot
@@ -208,8 +208,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self.render_mode = render_mode
         self.fast = bool(fast)
         self.render_settling = bool(render_settling)
-        self._frame_clock = (FrameClock(1.0 / self.metadata["render_fps"])
-                             if render_mode in FILMED_MODES else None)
+        self._film = (Film(FrameClock(1.0 / self.metadata["render_fps"]), self._record_frame, self.render_settling)
+                      if render_mode in FILMED_MODES else None)
         self._centre = self.sim.opening.centre
         self._floor = float(self.sim.state.x[:, 2].min())
         self.action_space = spaces.Box(-1.0, 1.0, (3,), np.float32)
@@ -281,9 +281,9 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             self.thrower = dataclasses.replace(self.thrower, **options["thrower"])
         self._frames = []
         self._flight = None
-        if self._frame_clock is not None:
-            self._frame_clock.restart(self.sim.state.time)
-            self._record_frame(self.sim)
+        if self._film is not None:
+            self._film.clock.restart(self.sim.state.time)
+            self._film(self.sim)
         return self._observation(), {"wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
 
     def _check_options(self, options: Any) -> dict[str, Any]:
@@ -345,12 +345,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
         self._flight = velocity
-        observer = self._record_frame if self._frame_clock is not None else None
-        result = self.sim.throw(launch, velocity, fast=self.fast, observer=observer, frames=self._frame_clock,
-                                settle_frames=self.render_settling)
+        result = self.sim.throw(launch, velocity, fast=self.fast, observer=self._film)
         pause = None
         if self._throws_done + 1 < self.balls_per_episode:  # the net settles for the next throw (none after the last)
-            pause = self.sim.run(self.sim.pause_plan(self._frame_clock, self.render_settling), observer)
+            pause = self.sim.run(self.sim.pause_plan(), self._film)
         return self.after_throw(launch, velocity, result, aimed, pause)
 
     def _intended_launch(self, action: np.ndarray) -> tuple[float, float, float]:
@@ -414,9 +412,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         return self._renderer
 
     def _record_frame(self, sim: Simulator) -> None:
-        assert self._frame_clock is not None
-        if not self._frame_clock.take(sim.state.time, 0.5 * sim.dt + 1e-9):
-            return
+        """Take a frame of ``sim`` as the render mode asks (the env's :class:`Film` records at its instants)."""
         if self.render_mode == "replay_list":
             if self._scenery is None:
                 self._scenery = Scenery.of(sim)

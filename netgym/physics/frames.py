@@ -3,12 +3,15 @@
 Frames are ``period`` simulated seconds apart from an anchor. Plans that are given a clock end
 their integration chunks at the substep nearest each instant (and move closed-form flights to
 the instants exactly), so that a video played at ``1 / period`` frames per second runs at the
-simulation's own pace; an observer asks :meth:`FrameClock.take` whether now is an instant.
+simulation's own pace; a :class:`Film`, the observer that records the frames, asks
+:meth:`FrameClock.take` whether now is an instant.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 from netgym.arguments import is_real
 
@@ -54,3 +57,25 @@ class FrameClock:
             return False
         self._taken = k
         return True
+
+
+class Film:
+    """An observer that films a simulation: ``record(sim)`` once at each instant of ``clock``
+    (within half a step). Handed to :meth:`~netgym.physics.simulator.Simulator.run`, it makes
+    the plans stop at the clock's instants (integration at the substep nearest each, closed-form
+    flights at the instant itself).
+
+    :param clock: the frame instants.
+    :param record: takes a frame of the simulator.
+    :param settling: also film the pauses between throws (else the clock pauses over them).
+    """
+
+    def __init__(self, clock: FrameClock, record: Callable[[Any], None], settling: bool = False) -> None:
+        self.clock = clock
+        self.record = record
+        self.settling = settling
+
+    def __call__(self, sim: Any) -> None:
+        """Record ``sim`` if now is an instant of the clock not yet taken."""
+        if self.clock.take(sim.state.time, 0.5 * sim.dt + 1e-9):
+            self.record(sim)

@@ -15,6 +15,8 @@ from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any, Protocol, Union
 
+from netgym.physics.frames import Film
+
 from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, relax
 from netgym.physics.model import KernelModel, Settings, State
 
@@ -51,28 +53,6 @@ Plan = Generator[Request, None, Any]
 """A simulation plan: yields :data:`Request` objects, returns its result."""
 
 
-class Clock(Protocol):
-    """Where integration must stop for an observer (a :class:`~netgym.physics.frames.FrameClock`)."""
-
-    def steps_to_next(self, time: float, dt: float) -> int:
-        """Substeps of ``dt`` from ``time`` to the next stop (at least 1)."""
-
-
-def integrate_until_stops(state: State, request: Integrate, clock: Clock | None) -> Plan:
-    """Carry out ``request`` on ``state``, in pieces that end at the stops of ``clock`` when one
-    is given. The pieces take the same substeps as the whole and the time ends as the whole's
-    would, so a plan that decides between whole requests decides the same with or without it."""
-    if clock is None:
-        yield request
-        return
-    end, left = state.time + request.n_steps * request.dt, request.n_steps
-    while left > 0:
-        n = min(left, clock.steps_to_next(state.time, request.dt))
-        yield Integrate(n, request.integrator, request.dt)
-        left -= n
-    state.time = end
-
-
 class Drivable(Integrand, Protocol):
     """What :func:`drive` needs of a simulator: :class:`Integrand` and its kernel records."""
 
@@ -87,11 +67,12 @@ class Drivable(Integrand, Protocol):
 def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[Any], None] | None = None) -> Any:
     """Carry out ``plan`` on ``sim`` until it returns; returns its result.
 
-    Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call,
-    each :class:`Relax` one :func:`~netgym.physics.integration.relax` call;
-    the plan is then resumed, with the divergence error of that integration thrown into it if
-    there was one. ``observer(sim)`` is called after every request carried out without error,
-    for example to record frames.
+    Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call
+    (one per piece between the frame instants when ``observer`` is a
+    :class:`~netgym.physics.frames.Film`: :func:`_integrate_filmed`), each :class:`Relax`
+    one :func:`~netgym.physics.integration.relax` call; the plan is then resumed, with the
+    divergence error of that integration thrown into it if there was one. ``observer(sim)`` is
+    called after every call carried out without error, for example to record frames.
     """
     error: Exception | None = None
     while True:
@@ -100,6 +81,9 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
         except StopIteration as stop:
             return stop.value
         error = None
+        if isinstance(request, Integrate) and isinstance(observer, Film):
+            error = _integrate_filmed(sim, request, workspace, observer)
+            continue  # filmed piece by piece
         if isinstance(request, Integrate):
             error = integrate(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                               workspace)
@@ -108,3 +92,22 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
                           workspace, request.rest)
         if error is None and observer is not None:
             observer(sim)
+
+
+def _integrate_filmed(sim: Drivable, request: Integrate, workspace: Workspace, film: Film) -> Exception | None:
+    """Carry out ``request`` in pieces that end at the substeps nearest the instants of the
+    film's clock, filming after each. The pieces
+    take the same substeps as the whole and the time ends as the whole's would, so a plan that
+    decides between whole requests decides the same, filmed or not. Returns the divergence
+    error of a piece, if one diverged (the state is then as before that piece)."""
+    state, settings = sim.state, sim.settings(request.integrator, request.dt)
+    end, left = state.time + request.n_steps * request.dt, request.n_steps
+    while left > 0:
+        n = min(left, film.clock.steps_to_next(state.time, request.dt))
+        error = integrate(sim, sim.kernel_model, settings, n, workspace)
+        if error is not None:
+            return error
+        left -= n
+        film(sim)
+    state.time = end
+    return None

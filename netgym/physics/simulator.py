@@ -24,7 +24,8 @@ from netgym.physics.integration import RestTest, Workspace
 from netgym.physics.kinds import Integrator
 from netgym.physics.model import KernelModel, Model, Settings, State
 from netgym.physics.opening import Opening
-from netgym.physics.frames import FrameClock
+from netgym.physics.outcomes import CaptureRule, capture_rule
+from netgym.physics.frames import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
 from netgym.physics.stability import NetModes, net_modes, stable_dt
@@ -101,6 +102,8 @@ class Simulator:
 
     ``awake`` is False while the net and the balls in it are at rest (a throw then need not
     integrate them while its ball flies far from them); any integration wakes the scene.
+    ``capture_rule`` is the scene's (:mod:`~netgym.physics.outcomes`); ``film`` the
+    :class:`~netgym.physics.frames.Film` of the plan being run, if it is filmed.
     """
 
     def __init__(self, scene: SceneConfig | str | Path = "basket",
@@ -114,6 +117,8 @@ class Simulator:
         self.counters = new_counters()
         self.workspace = Workspace()
         self.awake = False
+        self.capture_rule: CaptureRule = capture_rule(config.capture_rule)
+        self.film: Film | None = None
         self.modes = self._net_modes()
         self.stable_dt = stable_dt(self.integrator, self.modes)
         if check_stability and self.dt > self.stable_dt:
@@ -263,29 +268,29 @@ class Simulator:
         self.run(self.relax_plan(max_time))
 
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
-                   frames: FrameClock | None = None, settle_speed: float | None = None,
-                   damped: bool = True, window: float = RELAX_WINDOW) -> Plan:
-        """:meth:`relax` as a plan (see :meth:`run`); with ``frames``, its requests end at the
-        clock's instants too; ``integrator`` and ``dt`` replace the pause's own (then with no
+                   settle_speed: float | None = None, damped: bool = True, window: float = RELAX_WINDOW) -> Plan:
+        """:meth:`relax` as a plan (see :meth:`run`); run with a :class:`Film` that films the
+        settling, its requests end at the clock's instants too; ``integrator`` and ``dt`` replace the pause's own (then with no
         fallback), ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False``
         leaves out the kinetic damping (the net's own dynamics come to rest, or not), ``window``
         is the time over which nothing may have moved faster than the settle speed."""
         if integrator is not None or dt is not None:
             integrator = self.settle_integrator if integrator is None else integrator
-            yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt, frames,
+            yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt,
                                         settle_speed, damped, window)
             return
         try:
-            yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, frames, settle_speed,
+            yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, settle_speed,
                                         damped, window)
         except SimulationDivergedError:
             if (self.settle_integrator, self.settle_dt) == (self.integrator, self.dt):
                 raise
-            yield from self._relaxation(max_time, self.integrator, self.dt, frames, settle_speed, damped, window)
+            yield from self._relaxation(max_time, self.integrator, self.dt, settle_speed, damped, window)
 
-    def _relaxation(self, max_time: float, integrator: int, dt: float, frames: FrameClock | None,
-                    settle_speed: float | None, damped: bool, window: float) -> Plan:
+    def _relaxation(self, max_time: float, integrator: int, dt: float, settle_speed: float | None, damped: bool,
+                    window: float) -> Plan:
         """Dynamic relaxation with one integrator and dt (see :meth:`relax_plan`)."""
+        frames = self.film.clock if self.film is not None and self.film.settling else None
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
         rest = RestTest(self.state.x.shape, round(window / dt), speed * window, damped)
         started, taken = self.state.time, 0
@@ -304,25 +309,25 @@ class Simulator:
                                 f"{speed:g} m/s over {window:g} s) within {max_time:g} s of relaxation; "
                                 f"the state is left where the relaxation ended")
 
-    def pause_plan(self, frames: FrameClock | None = None, film: bool = False) -> Plan:
+    def pause_plan(self) -> Plan:
         """The pause between two throws, as a plan: :meth:`relax_plan` if the scene still moves,
         else nothing; a net with no ball in it is put back at its equilibrium, the settled net
         (filmed, it relaxes for the frames first, then is put back as unfilmed). Returns
         ``{"settle_substeps": ..., "settle_time": ...}``, the substeps and simulated seconds it
-        took. With ``frames`` and ``film`` its requests end at the clock's instants; with
-        ``frames`` alone the clock is paused over it (restart it at the launch)."""
-        substeps, time = self.substeps, self.state.time
+        took. Run with a :class:`Film` that films the settling, its requests end at the clock's
+        instants; with one that does not, the clock is paused over it (restart it at the launch)."""
+        substeps, time, film = self.substeps, self.state.time, self.film
         if self.awake:
-            if frames is not None and not film:
-                frames.pause()
+            if film is not None and not film.settling:
+                film.clock.pause()
             if self.n_balls > 0:
-                yield from self.relax_plan(frames=frames if film else None)
+                yield from self.relax_plan()
             else:
-                if frames is not None and film:
+                if film is not None and film.settling:
                     kept = self.checkpoint()
-                    yield from self.relax_plan(frames=frames)
+                    yield from self.relax_plan()
                     self.restore(kept)
-                    frames.restart(time)
+                    film.clock.restart(time)
                 self._settle_empty_net()
         return {"settle_substeps": self.substeps - substeps, "settle_time": self.state.time - time}
 
@@ -336,27 +341,30 @@ class Simulator:
         self.awake = False
 
     def throw(self, position: Any, velocity: Any, fast: bool = True,
-              observer: Callable[["Simulator"], None] | None = None, frames: FrameClock | None = None,
-              settle_frames: bool = False) -> ThrowResult:
+              observer: Callable[["Simulator"], None] | None = None) -> ThrowResult:
         """Launch a ball and simulate until its outcome is decided (see :class:`Throw`).
 
         The net is first brought to rest if it still moves. A ball captured under the ``held``
         rule stays in the scene; a missed one, or a goal under ``line``, is removed. With
         ``fast=False`` everything is integrated from launch to the time limit (the reference the
-        fast path is tested against). ``observer(sim)`` is called after every request; with
-        ``frames`` the requests end at its instants (see :class:`Throw`).
+        fast path is tested against). ``observer(sim)`` is called after every request; a
+        :class:`Film` films the throw (see :class:`Throw`).
         """
-        return self.run(self.throw_plan(position, velocity, fast, frames, settle_frames), observer)
+        return self.run(self.throw_plan(position, velocity, fast), observer)
 
-    def throw_plan(self, position: Any, velocity: Any, fast: bool = True, frames: FrameClock | None = None,
-                   settle_frames: bool = False) -> Plan:
+    def throw_plan(self, position: Any, velocity: Any, fast: bool = True) -> Plan:
         """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
-        return Throw(self, position, velocity, fast, frames, settle_frames).plan()
+        return Throw(self, position, velocity, fast).plan()
 
     def run(self, plan: Plan, observer: Callable[["Simulator"], None] | None = None) -> Any:
         """Carry out a plan on this simulator (with :func:`~netgym.physics.plans.drive`) and
-        return its result. ``observer(sim)`` is called after every request."""
-        return drive(self, plan, self.workspace, observer)
+        return its result. ``observer(sim)`` is called after every request; a :class:`Film` is
+        the plan's :attr:`film` meanwhile, so that its requests stop at the film's instants."""
+        kept, self.film = self.film, observer if isinstance(observer, Film) else None
+        try:
+            return drive(self, plan, self.workspace, observer)
+        finally:
+            self.film = kept
 
     def divergence_advice(self, integrator: int) -> str:
         """What to change after ``integrator`` diverged on this scene."""

@@ -1,0 +1,90 @@
+"""The types that decide a throw's outcome: reasons, capture rules, the fast path's tuning, the film."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from netgym.config import load_scene
+from netgym.physics.frames import Film, FrameClock
+from netgym.physics.opening import Opening
+from netgym.physics.outcomes import HeldRule, LineRule, Reason, capture_rule
+from netgym.physics.throws import TUNING
+
+GOAL_MOUTH = Opening.of_net(load_scene("goal").net)
+RADIUS = 0.11
+
+
+def _past_the_plane(depth: float) -> np.ndarray:
+    """A point ``depth`` past the goal mouth's plane (inwards), level with its centre."""
+    point = GOAL_MOUTH.centre
+    point[GOAL_MOUTH.axis] -= GOAL_MOUTH.sign * depth
+    return point
+
+
+def test_reasons_are_the_strings_info_has_always_held() -> None:
+    assert [str(reason) for reason in Reason] == ["flies_away", "at_rest", "cannot_reach_opening", "crossed_line",
+                                                  "out_of_play", "time_limit"]
+    assert Reason.AT_REST == "at_rest" and f"{Reason.TIME_LIMIT}" == "time_limit"
+    assert Reason("out_of_play") is Reason.OUT_OF_PLAY
+
+
+def test_the_scene_names_its_rule_once() -> None:
+    assert isinstance(capture_rule("held"), HeldRule) and isinstance(capture_rule("line"), LineRule)
+    with pytest.raises(ValueError, match="capture_rule = 'inside' is not one of"):
+        capture_rule("inside")
+
+
+def test_the_line_rule_decides_once_the_whole_ball_is_over_the_line() -> None:
+    line = LineRule()
+    half_over = _past_the_plane(0.5 * RADIUS)
+    over = _past_the_plane(RADIUS)
+    assert line.decision(GOAL_MOUTH, RADIUS, half_over, entered=True, from_front=True) is None
+    assert line.decision(GOAL_MOUTH, RADIUS, over, entered=True, from_front=True) is Reason.CROSSED_LINE
+    assert line.decision(GOAL_MOUTH, RADIUS, over, entered=False, from_front=True) is Reason.OUT_OF_PLAY
+    assert line.decision(GOAL_MOUTH, RADIUS, over, entered=False, from_front=False) is None  # launched behind it
+    assert line.captured(Reason.CROSSED_LINE, entered=True, inside=False)
+    assert not line.captured(Reason.OUT_OF_PLAY, entered=False, inside=True)
+    assert not line.captured(None, entered=True, inside=True) and not line.keeps_captured
+
+
+def test_the_held_rule_decides_nothing_and_counts_a_ball_inside() -> None:
+    held = HeldRule()
+    assert held.decision(GOAL_MOUTH, RADIUS, _past_the_plane(1.0), entered=True, from_front=True) is None
+    assert held.captured(None, entered=True, inside=True)
+    assert not held.captured(None, entered=True, inside=False) and not held.captured(None, False, True)
+    assert held.keeps_captured
+
+
+def test_a_flight_is_cut_at_the_rules_first_decision() -> None:
+    asked: list[float] = []
+
+    def decided_at(t: float) -> bool:
+        asked.append(t)
+        return t >= 0.3
+
+    assert HeldRule().decision_instant(1.0, decided_at, 1e-4) == 1.0 and not asked
+    instant = LineRule().decision_instant(1.0, decided_at, 1e-4)
+    assert 0.3 <= instant <= 0.3 + 1e-4
+    assert LineRule().decision_instant(0.2, decided_at, 1e-4) == 0.2
+
+
+def test_the_fast_path_tuning_is_one_frozen_record() -> None:
+    assert TUNING.clearance < TUNING.awake_margin and TUNING.time_epsilon < TUNING.line_time_tolerance
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        TUNING.clearance = 1.0  # type: ignore[misc]
+
+
+def test_a_film_records_each_instant_once() -> None:
+    class Sim:  # what a film reads of a simulator
+        dt = 0.002
+        state = type("State", (), {"time": 0.0})()
+
+    sim, recorded = Sim(), []
+    film = Film(FrameClock(0.1), lambda s: recorded.append(s.state.time))
+    for time in (0.0, 0.0005, 0.05, 0.0995, 0.1, 0.2011):
+        sim.state.time = time
+        film(sim)
+    assert recorded == [0.0, 0.0995]
