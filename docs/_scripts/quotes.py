@@ -159,7 +159,7 @@ def _report_agreement(integrator: str, dt_ms: str) -> str:
     section = text[text.index("## 2. Outcome accuracy"):text.index("## 3.")]
     for line in section.splitlines():
         cells = [c.strip() for c in line.strip("|").split("|")]
-        if cells[:2] == [integrator, dt_ms]:
+        if cells[0].split(" ")[0] == integrator and cells[1:2] == [dt_ms]:
             return cells[2]
     raise ValueError(f"{REPORT} section 2 has no row for {integrator} at {dt_ms} ms")
 
