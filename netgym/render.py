@@ -4,8 +4,8 @@ A small NumPy rasteriser with a depth buffer (no GPU, no extra dependency): net 
 lines shaded by depth (nearer strings brighter, so the box reads in 3D), poles as thick lines,
 balls as shaded discs, the ground as a checkerboard, the thrower as a stick figure when one is
 filmed (:meth:`Renderer.film`, which also frames the camera on the throw); anti-aliased by
-supersampling (the frame is drawn at ``supersample`` times the size and averaged down; about
-25 ms a 480 x 360 frame at the default 2, 5 ms at 1). ``human`` mode shows the frames in a
+supersampling (the frame is drawn at ``supersample`` times the size and averaged down: the
+default 2 draws four times the pixels of 1). ``human`` mode shows the frames in a
 pygame window (optional extra ``render``; headless with ``SDL_VIDEODRIVER=dummy``).
 :func:`caption_frame` writes a line of text on a frame (Pillow, extra ``render``).
 """

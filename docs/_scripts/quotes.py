@@ -194,6 +194,7 @@ def at_a_glance() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "environments": environments,
+    "environments-docs": lambda: environments(cards="environments/"),
     "capture-rates": capture_rates,
     "variants": variants,
     "at-a-glance": at_a_glance,
