@@ -100,9 +100,9 @@ class BallisticOracle:
     def _miss(self, thrower: Thrower, target: np.ndarray, speed: float, elevation: float, azimuth: float) -> np.ndarray:
         """Where the flight through air crosses the opening's plane, minus ``target`` (2 axes)."""
         o = self.opening
-        point, _ = air.plane_crossing(thrower.position, launch_velocity(speed, elevation, azimuth, thrower), o.axis,
-                                      o.plane, -o.sign, -self.gravity, self.drag, self.wind, self.scene.ball.radius,
-                                      AIM_STEP, self.scene.simulation.time_limit)
+        point, _ = air.plane_crossing(thrower.position, launch_velocity(speed, elevation, azimuth, thrower),
+                                      air.Plane(o.axis, o.plane, -o.sign), -self.gravity, self.drag, self.wind,
+                                      self.scene.ball.radius, AIM_STEP, self.scene.simulation.time_limit)
         return np.array([point[a] - target[a] for a in o.tangent_axes])
 
     def _through_air(self, thrower: Thrower, target: np.ndarray, speed: float, elevation: float,

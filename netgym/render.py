@@ -213,7 +213,7 @@ class Renderer:
             depth = net[2]
             far = (depth - depth.min()) / max(float(np.ptp(depth)), 1e-9)
             net = (*net[:3], NET * (1.0 - (1.0 - NET_FAR_SHADE) * far)[:, None])
-        fragments = [net, self._line_fragments(m.poles[:, :3], m.poles[:, 3:6], POLE, 2 * k),
+        fragments = [net, self._line_fragments(m.poles.start, m.poles.end, POLE, 2 * k),
                      self._ball_fragments(x[m.n_net:], m.ball_radius)]
         if self.figure is not None:
             limbs = self.figure.segments

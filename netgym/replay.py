@@ -31,7 +31,7 @@ class Scenery:
     def of(cls, sim: Simulator) -> "Scenery":
         """The scenery of ``sim``'s scene."""
         m = sim.model
-        return cls(m.segments.copy(), m.poles[:, :6].reshape(-1, 2, 3).copy(), float(m.ball_radius),
+        return cls(m.segments.copy(), np.stack([m.poles.start, m.poles.end], axis=1), float(m.ball_radius),
                    np.array(sim.opening.centre, dtype=float))
 
 

@@ -22,8 +22,7 @@ CALM = np.zeros(3)
 
 def _fly(p, v, tau, gravity=-9.81, k=0.05, wind=CALM, step=air.MAX_FLIGHT_STEP):
     p, v = np.array(p, dtype=float), np.array(v, dtype=float)
-    air.fly(p, v, tau, gravity, k, np.asarray(wind, dtype=float), GROUND["radius"], GROUND["restitution"],
-            GROUND["friction"], GROUND["threshold"], step)
+    air.fly(p, v, tau, k, np.asarray(wind, dtype=float), flight.Ground(gravity=gravity, **GROUND), step)
     return p, v
 
 

@@ -10,7 +10,8 @@ import pytest
 
 from netgym.physics import contacts
 from netgym.physics.kinds import Contact
-from netgym.physics.model import index_segments
+from netgym.physics.model import KernelModel, index_segments
+from netgym.physics.opening import Opening
 
 RADIUS = 0.3           # m, ball radius
 THRESHOLD = 0.2        # m/s, restitution threshold: slower approaches do not bounce
@@ -29,8 +30,12 @@ def resolve(x: np.ndarray, v: np.ndarray, inv_mass: np.ndarray, n_net: int, segm
     ordered, segment_start = index_segments(np.asarray(segments, dtype=np.int64).reshape(-1, 2), n_net)
     net = x[:n_net]
     box = np.concatenate([net.min(axis=0), net.max(axis=0)]) if n_net else np.array([np.inf] * 3 + [-np.inf] * 3)
-    contacts.resolve_contacts(x, v, inv_mass, x.copy(), n_net, RADIUS, ordered, segment_start, np.zeros((0, 7)),
-                              coef, THRESHOLD, box, np.zeros(n_net, dtype=np.int64))
+    nowhere = Opening(2, 1, 100.0, (0, 1), (-1.0, -1.0), (1.0, 1.0))
+    model = KernelModel(n_net=n_net, springs=np.zeros((0, 2), dtype=np.int64), spring_params=np.zeros((0, 3)),
+                        segments=ordered, segment_start=segment_start, poles=contacts.Poles.none(),
+                        materials=contacts.Materials.of_table(coef), restitution_threshold=THRESHOLD, gravity=0.0,
+                        drag=0.0, ball_radius=RADIUS, opening=nowhere.kernel_record(), ball_drag=0.0, wind=np.zeros(3))
+    contacts.resolve_contacts(contacts.Bodies(x, v, inv_mass, x.copy()), model, box, np.zeros(n_net, dtype=np.int64))
 
 
 @pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
@@ -104,8 +109,8 @@ def test_the_friction_cone_holds_a_slip_within_mu_times_the_normal_impulse(share
     x = np.array([[0.0, 0.0, 1.0 + RADIUS - overlap], [0.0, 0.0, 1.0]])  # the ball first, as ``a``
     v = np.array([[vt, 0.0, -vn], [0.0, 0.0, 0.0]])
     start = x.copy()
-    contacts._pair_response(x, v, np.array([1.0, 0.0]), start, 0, 1, 1, 0.0, 0.0, 0.0, -1.0, overlap, e, mu,
-                            THRESHOLD)
+    contacts._pair_response(contacts.Bodies(x, v, np.array([1.0, 0.0]), start), 0, 1, 1, 0.0,
+                            contacts.Touch(0.0, 0.0, -1.0, overlap), contacts.Material(e, mu), THRESHOLD)
     assert v[0, 2] == pytest.approx(e * vn, abs=1e-12)
     assert v[0, 0] == pytest.approx(0.0 if sticks else vt - bound, abs=1e-12)
     assert (v[0, 0] > 1e-6) == (not sticks)

@@ -100,7 +100,8 @@ def test_ball_bounces_off_poles_without_sinking_or_sticking(scene: str, start, v
     """Never closer than contact distance, leaves with about ``restitution`` times its approach
     speed, and does not stay stuck (the seed's problem 6)."""
     sim = Simulator(scene)
-    a, b, pole_radius = sim.model.poles[pole, :3], sim.model.poles[pole, 3:6], sim.model.poles[pole, 6]
+    poles = sim.model.poles
+    a, b, pole_radius = poles.start[pole], poles.end[pole], poles.radius[pole]
     reach = sim.model.ball_radius + pole_radius
 
     def distance() -> float:

@@ -14,6 +14,8 @@ import pytest
 
 from netgym.physics import integrators
 from netgym.physics.integrators import Scratch
+from netgym.physics.kinds import Integrator
+from netgym.physics.model import Settings
 
 OMEGA = 2.0 * math.pi   # rad/s: a period of 1 s
 REST = 1.0              # m, the spring's rest length
@@ -34,7 +36,8 @@ def rk4(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
 
 
 def implicit_euler(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
-    integrators.step_implicit_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h, 1e-14, 50, s.work, s.coef)
+    integrators.step_implicit_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h,
+                                    Settings.make(Integrator.IMPLICIT_EULER, h, 0.25, 1e-14, 50, 1e3), s)
 
 
 def imex_euler(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:

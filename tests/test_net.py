@@ -159,7 +159,8 @@ def test_the_kernels_wavefront_order_of_springs_gives_bitwise_the_same_steps(int
     keeps the order of every two springs sharing a particle, so each particle sees the same
     updates in the same order. Steps of a disturbed net in both orders agree to the last bit."""
     from netgym.physics.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler
-    from netgym.physics.model import Model
+    from netgym.physics.kinds import Integrator
+    from netgym.physics.model import Model, Settings
 
     model = Model.from_config(load_scene("basket"))
     ordered = model.kernel
@@ -180,6 +181,7 @@ def test_the_kernels_wavefront_order_of_springs_gives_bitwise_the_same_steps(int
                 step_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 5e-4, work, True)
             else:
                 step_implicit_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 0.01,
-                                    1e-8, 200, work, coef)
+                                    Settings.make(Integrator.IMPLICIT_EULER, 0.01, 0.25, 1e-8, 200, 1e3),
+                                    Scratch(work, coef))
         results.append((x, v))
     assert np.array_equal(results[0][0], results[1][0]) and np.array_equal(results[0][1], results[1][1])

@@ -10,6 +10,7 @@ import pytest
 
 from netgym.errors import UnstableTimeStepError
 from netgym.physics import flight, stepping
+from netgym.physics.contacts import Materials, Poles
 from netgym.physics.integrators import Scratch
 from netgym.physics.kinds import Contact, Integrator
 from netgym.physics.model import KernelModel, Settings
@@ -68,9 +69,9 @@ def _oscillator(integrator: int, dt: float, t_end: float, ks: float, kd: float, 
     far_away = Opening(axis=2, sign=1, plane=100.0, tangent_axes=(0, 1), tangent_lower=(-1.0, -1.0),
                        tangent_upper=(1.0, 1.0))
     model = KernelModel(n_net=2, springs=springs, spring_params=params, segments=np.zeros((0, 2), dtype=np.int64),
-                        segment_start=np.zeros(3, dtype=np.int64), poles=np.zeros((0, 7)),
-                        contact=np.zeros((len(Contact), 2)), restitution_threshold=0.0,
-                        gravity=0.0, drag=0.0, ball_radius=0.1, opening=far_away.kernel_array(), ball_drag=0.0,
+                        segment_start=np.zeros(3, dtype=np.int64), poles=Poles.none(),
+                        materials=Materials.of_table(np.zeros((len(Contact), 2))), restitution_threshold=0.0,
+                        gravity=0.0, drag=0.0, ball_radius=0.1, opening=far_away.kernel_record(), ball_drag=0.0,
                         wind=np.zeros(3))
     settings = Settings.make(integrator=integrator, dt=dt, max_travel=0.25, cg_tolerance=1e-13, cg_max_iterations=500,
                         divergence_speed=1e6)

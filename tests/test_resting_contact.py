@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from netgym.physics import stepping
+from netgym.physics.contacts import Materials, Poles
 from netgym.physics.integrators import Scratch
 from netgym.physics.kinds import Contact, Integrator
 from netgym.physics.model import KernelModel, Settings, index_segments
@@ -72,9 +73,10 @@ def _slide(angle: float, friction: float, seconds: float, dt: float = 1e-3) -> f
     nowhere = Opening(2, 1, 100.0, (0, 1), (-1.0, -1.0), (1.0, 1.0))
     segments, segment_start = index_segments(segments, len(points))
     model = KernelModel(n_net=len(points), springs=np.zeros((0, 2), dtype=np.int64), spring_params=np.zeros((0, 3)),
-                        segments=segments, segment_start=segment_start, poles=np.zeros((0, 7)), contact=contact,
+                        segments=segments, segment_start=segment_start, poles=Poles.none(),
+                        materials=Materials.of_table(contact),
                         restitution_threshold=0.2,
-                        gravity=-9.81, drag=0.0, ball_radius=radius, opening=nowhere.kernel_array(), ball_drag=0.0,
+                        gravity=-9.81, drag=0.0, ball_radius=radius, opening=nowhere.kernel_record(), ball_drag=0.0,
                         wind=np.zeros(3))
     settings = Settings.make(Integrator.SYMPLECTIC_EULER, dt, 0.25, 1e-10, 100, 1e3)
     start = x[-1].copy()

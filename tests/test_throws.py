@@ -158,9 +158,9 @@ def test_clearance_is_the_distance_to_the_nearest_obstacle() -> None:
         sim.state.x[-1] = centre
         points = start[:, None, :] + on_segment * (end - start)[:, None, :]  # 0.1 mm apart along each spring
         particles = np.linalg.norm(points - centre, axis=2).min() - m.ball_radius
-        a, b = m.poles[:, :3], m.poles[:, 3:6]
+        a, b = m.poles.start, m.poles.end
         t = np.clip(np.sum((centre - a) * (b - a), axis=1) / np.sum((b - a) ** 2, axis=1), 0, 1)
-        poles = (np.linalg.norm(centre - (a + t[:, None] * (b - a)), axis=1) - m.ball_radius - m.poles[:, 6]).min()
+        poles = (np.linalg.norm(centre - (a + t[:, None] * (b - a)), axis=1) - m.ball_radius - m.poles.radius).min()
         other = np.linalg.norm(sim.state.x[-2] - centre) - 2 * m.ball_radius
         expected = min(particles, poles, other)
         got = clearance(sim.state.x, m.n_net, len(sim.state.x) - 1, m.ball_radius, m.segments, m.poles)
@@ -193,7 +193,6 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
         sim.throw([x, 0.2, 3.6], [0.0, 0.0, 0.0])
     sim.launch_ball([-5.0, 0.0, 3.5], [9.0, 0.0, 0.5])  # into the far side of the net, hard
     m, k = sim.model, sim.kernel_model
-    e, mu = k.contact[contacts.Contact.BALL_NET]
     moves = []
     for _ in range(200):
         sim.step(1)
@@ -206,8 +205,7 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
                 results = []
                 for bound in (extent, np.inf):
                     x, v = start.copy(), s.v.copy()
-                    moved = contacts._ball_net(x, v, s.inv_mass, start, b, m.ball_radius, m.n_net, k.segments,
-                                               k.segment_start, k.contact, k.restitution_threshold, bound,
+                    moved = contacts._ball_net(contacts.Bodies(x, v, s.inv_mass, start), b, k, bound,
                                                np.empty(m.n_net, dtype=np.int64))
                     results.append((x, v, moved))
                 (x1, v1, moved), (x2, v2, _) = results

@@ -363,45 +363,66 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             raise ValueError(f"action must be finite, got {a.tolist()}")
         return action_to_launch(np.clip(a, -1.0, 1.0), self.scene.throw)
 
-    def action_velocity(self, action: np.ndarray) -> np.ndarray:
-        """Validate an action and map it to a launch velocity for the current thrower (before
-        any launch noise)."""
-        assert self.thrower is not None
-        return launch_velocity(*self._intended_launch(action), self.thrower)
-
     def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
                     aimed: np.ndarray | None = None,
                     pause: Mapping[str, float] | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
-        """Book a finished throw: reward, episode end, next thrower, observation and info
-        (``aimed``: the velocity the action meant, before launch noise; ``pause``: what
-        :meth:`~netgym.physics.simulator.Simulator.pause_plan` returned after the throw)."""
-        settle_substeps = result.settle_substeps + (pause["settle_substeps"] if pause else 0)
-        settle_time = result.settle_time + (pause["settle_time"] if pause else 0.0)
+        """Book a finished throw, term by term: :meth:`_reward` (with :meth:`_shaping` for a
+        miss), :meth:`_feedback`, :meth:`_terminated`, :meth:`_next_thrower`, then the observation
+        and :meth:`_info` (``aimed``: the velocity the action meant, before launch noise;
+        ``pause``: what :meth:`~netgym.physics.simulator.Simulator.pause_plan` returned after the throw)."""
         self._throws_done += 1
         self._caught += int(result.captured)
-        reward = 1.0 if result.captured else 0.0
-        if self.reward_mode == "shaped" and not result.captured:
-            m = self.sim.model
-            miss = opening_miss_distance(launch, velocity, self.sim.opening, m.gravity, m.ball_radius,
-                                         drag=m.ball_drag, wind=m.wind)
-            reward = SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
-        if self.feedback:
-            self._last_throw = throw_feedback(self.sim, launch, velocity, result.captured)
-        terminated = self._throws_done >= self.balls_per_episode
-        self._ended = terminated
-        if not terminated:
-            self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
-        self._flight = None
-        info = {"captured": result.captured, "reason": result.reason,
-                "final_position": result.final_position, "sim_time": result.time,
-                "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
-                "settle_substeps": settle_substeps, "settle_time": settle_time,
-                "launch_position": launch, "launch_velocity": velocity,
-                "aimed_velocity": velocity if aimed is None else aimed, "wind": self.sim.model.wind.copy(),
-                "scene_draws": dict(self._draws)}
+        reward = self._reward(launch, velocity, result.captured)
+        self._feedback(launch, velocity, result.captured)
+        terminated = self._terminated()
+        self._next_thrower(terminated)
+        info = self._info(launch, velocity, result, velocity if aimed is None else aimed, pause)
         if self.render_mode == "human":
             self._renderer_show()
         return self._observation(), reward, terminated, False, info
+
+    def _reward(self, launch: np.ndarray, velocity: np.ndarray, captured: bool) -> float:
+        """1 for a capture; else 0, or the shaping of a miss in ``shaped`` mode."""
+        if captured:
+            return 1.0
+        return self._shaping(launch, velocity) if self.reward_mode == "shaped" else 0.0
+
+    def _shaping(self, launch: np.ndarray, velocity: np.ndarray) -> float:
+        """A miss's reward in ``shaped`` mode: SHAPED_MAX x exp(-d / SHAPED_SCALE), ``d`` the
+        closest distance between the ball's free flight and the opening."""
+        m = self.sim.model
+        miss = opening_miss_distance(launch, velocity, self.sim.opening, m.gravity, m.ball_radius,
+                                     drag=m.ball_drag, wind=m.wind)
+        return SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
+
+    def _feedback(self, launch: np.ndarray, velocity: np.ndarray, captured: bool) -> None:
+        """With ``feedback``, note the throw's outcome for the next observation."""
+        if self.feedback:
+            self._last_throw = throw_feedback(self.sim, launch, velocity, captured)
+
+    def _terminated(self) -> bool:
+        """The episode ends after ``balls_per_episode`` throws (``step`` refuses to go on)."""
+        self._ended = self._throws_done >= self.balls_per_episode
+        return self._ended
+
+    def _next_thrower(self, terminated: bool) -> None:
+        """Draw the next throw's thrower, unless the episode ended; no throw is in flight."""
+        if not terminated:
+            self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
+        self._flight = None
+
+    def _info(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult, aimed: np.ndarray,
+              pause: Mapping[str, float] | None) -> dict[str, Any]:
+        """The step's info (see the class docstring): the throw's outcome and its work, the
+        settling before it and after it (``pause``), the launch, the wind and the scene's draws."""
+        settle_substeps = result.settle_substeps + (pause["settle_substeps"] if pause else 0)
+        settle_time = result.settle_time + (pause["settle_time"] if pause else 0.0)
+        return {"captured": result.captured, "reason": result.reason,
+                "final_position": result.final_position, "sim_time": result.time,
+                "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
+                "settle_substeps": settle_substeps, "settle_time": settle_time,
+                "launch_position": launch, "launch_velocity": velocity, "aimed_velocity": aimed,
+                "wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
 
     # ------------------------------------------------------------------ rendering
     def _get_renderer(self):

@@ -112,8 +112,9 @@ def throw_feedback(sim: Simulator, launch: np.ndarray, velocity: np.ndarray, cap
     the opening's centre."""
     m, opening = sim.model, sim.opening
     point, crossed = air.plane_crossing(np.asarray(launch, dtype=np.float64), np.asarray(velocity, dtype=np.float64),
-                                        opening.axis, opening.plane, -opening.sign, m.gravity, m.ball_drag, m.wind,
-                                        m.ball_radius, FEEDBACK_STEP, sim.config.simulation.time_limit)
+                                        air.Plane(opening.axis, opening.plane, -opening.sign), m.gravity,
+                                        m.ball_drag, m.wind, m.ball_radius, FEEDBACK_STEP,
+                                        sim.config.simulation.time_limit)
     u, w = opening.tangent_axes
     centre = opening.centre
     short = 0.0 if crossed else abs(point[opening.axis] - opening.plane)

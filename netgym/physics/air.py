@@ -11,6 +11,7 @@ with the wind pushing. :func:`rk4_step` is also the balls' free flight inside th
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from netgym.physics.jit import kernel
@@ -81,10 +82,13 @@ def _slide_step(v, h, gravity, k, wind, friction):
 
 
 @kernel
-def fly(p, v, tau, gravity, k, wind, radius, restitution, friction, threshold, max_step):
+def fly(p, v, tau, k, wind, ground, max_step):
     """Move a lone ball (``p``, ``v`` 3-vectors, in place) through air for ``tau`` seconds:
     RK4 steps of at most ``max_step`` while airborne, the ground bounce where its lowest point
-    reaches the ground (the step is cut at the contact), sliding once it no longer bounces."""
+    reaches the ground (the step is cut at the contact), sliding once it no longer bounces.
+    ``ground``: a :class:`~netgym.physics.flight.Ground` (the ball's radius, gravity, and the
+    ground's restitution, friction and restitution threshold)."""
+    radius, gravity, restitution, friction, threshold = ground
     left = tau
     start_p, start_v = np.empty(3), np.empty(3)   # the step's start, kept to cut it at the ground
     while left > 1e-15:
@@ -159,12 +163,21 @@ def flight_path(p, v, gravity, k, wind, radius, step, t_max):
     return points[:n]
 
 
+class Plane(NamedTuple):
+    """The plane ``x[axis] = value``, crossed ``inwards`` (+1 or -1: the way it points)."""
+
+    axis: int
+    value: float
+    inwards: float
+
+
 @kernel
-def plane_crossing(p, v, axis, value, inwards, gravity, k, wind, radius, step, t_max):
+def plane_crossing(p, v, plane, gravity, k, wind, radius, step, t_max):
     """Where a lone ball's free flight from ``p``, ``v`` (through air, until its lowest point
-    first reaches the ground or ``t_max``) crosses the plane ``x[axis] = value`` moving the way
-    ``inwards`` (+1 or -1) points. Returns ``(point, crossed)``; when it never crosses, the point
-    of the flight nearest the plane (on the side it came from) and False."""
+    first reaches the ground or ``t_max``) crosses the :class:`Plane` moving the way it points.
+    Returns ``(point, crossed)``; when it never crosses, the point of the flight nearest the
+    plane (on the side it came from) and False."""
+    axis, value, inwards = plane
     q, u = p.copy(), v.copy()
     nearest = q.copy()
     before_q = np.empty(3)

@@ -22,15 +22,71 @@ fraction of its radius relative to the net in one substep.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
+
+import numpy as np
 
 from netgym.physics.jit import kernel
-
 from netgym.physics.kinds import Contact
 from netgym.physics.rows import add_scaled
 
 
 COINCIDENT = 1e-24   # m^2: squared distances below this leave no direction between two centres
 NEAR_MARGIN = 0.05   # m: slack of the segment broad phase (see _ball_net)
+
+
+class Bodies(NamedTuple):
+    """The arrays contacts act on: positions ``x`` and velocities ``v`` (n, 3), ``inv_mass``
+    (n,), and ``start``, every body's position at the start of the substep."""
+
+    x: np.ndarray
+    v: np.ndarray
+    inv_mass: np.ndarray
+    start: np.ndarray
+
+
+class Material(NamedTuple):
+    """How a kind of contact responds: its coefficient of ``restitution`` and its Coulomb ``friction``."""
+
+    restitution: float
+    friction: float
+
+
+class Materials(NamedTuple):
+    """The :class:`Material` of each kind of contact (one field per :class:`Contact` member)."""
+
+    ball_net: Material
+    ball_pole: Material
+    ball_ball: Material
+    ball_ground: Material
+    net_ground: Material
+
+    @classmethod
+    def of_table(cls, table: np.ndarray) -> "Materials":
+        """The materials of a (restitution, friction) table with a row per :class:`Contact` kind."""
+        return cls(*(Material(float(table[kind, 0]), float(table[kind, 1])) for kind in Contact))
+
+
+class Touch(NamedTuple):
+    """Where two bodies touch: the unit normal (nx, ny, nz) and the ``depth`` of the overlap along it."""
+
+    nx: float
+    ny: float
+    nz: float
+    depth: float
+
+
+class Poles(NamedTuple):
+    """The poles, capsules: pole p runs from ``start[p]`` to ``end[p]`` (m) with ``radius[p]``."""
+
+    start: np.ndarray
+    end: np.ndarray
+    radius: np.ndarray
+
+    @classmethod
+    def none(cls) -> "Poles":
+        """No poles at all."""
+        return cls(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0))
 
 
 @kernel
@@ -72,15 +128,16 @@ def _static_slip(sx, sy, sz, nx, ny, nz, bound):
 
 
 @kernel
-def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitution, friction, threshold):
-    """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j``.
+def _pair_response(bodies, a, i, j, t, touch, material, threshold):
+    """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j`` of
+    :class:`Bodies`, of a :class:`Material`.
 
-    The normal ``n`` points from ``a`` to the point; ``depth`` is the overlap along it.
-    A single body as the second side is ``i == j`` with ``t = 0``. ``start`` holds every
-    body's position at the start of the substep: a resting contact (approaching no faster
-    than ``threshold``) also holds static friction on positions. Returns a bound on how far it
-    moved any body (m).
+    The :class:`Touch`'s normal ``n`` points from ``a`` to the point; its ``depth`` is the
+    overlap along it. A single body as the second side is ``i == j`` with ``t = 0``. A resting
+    contact (approaching no faster than ``threshold``) also holds static friction on positions
+    (on the slip since the substep's ``start``). Returns a bound on how far it moved any body (m).
     """
+    (x, v, inv_mass, start), (nx, ny, nz, depth), (restitution, friction) = bodies, touch, material
     wa = inv_mass[a]
     wi = (1.0 - t) * inv_mass[i]
     wj = t * inv_mass[j] if j != i else 0.0
@@ -133,10 +190,13 @@ def _pair_response(x, v, inv_mass, start, a, i, j, t, nx, ny, nz, depth, restitu
 
 
 @kernel
-def _static_response(x, v, start, k, nx, ny, nz, depth, restitution, friction, threshold, hold):
-    """Resolve a contact of body ``k`` with an immovable obstacle; ``n`` points out of the
-    obstacle towards ``k``. ``hold``: a resting contact holds static friction on positions, as
-    in :func:`_pair_response` (balls; net particles on the ground do not)."""
+def _static_response(bodies, k, touch, material, threshold, hold):
+    """Resolve a contact of body ``k`` with an immovable obstacle; the :class:`Touch`'s normal
+    points out of the obstacle towards ``k``. ``hold``: a resting contact holds static friction
+    on positions, as in :func:`_pair_response` (balls; net particles on the ground do not)."""
+    x, v, start = bodies.x, bodies.v, bodies.start
+    nx, ny, nz, depth = touch
+    restitution, friction = material
     add_scaled(x, k, depth, nx, ny, nz)
     closing = v[k, 0] * nx + v[k, 1] * ny + v[k, 2] * nz
     if hold and -closing <= threshold:  # a resting contact: static friction on positions
@@ -160,11 +220,13 @@ def _static_response(x, v, start, k, nx, ny, nz, depth, restitution, friction, t
 
 
 @kernel
-def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
-    for p in range(poles.shape[0]):
-        ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
-        ex, ey, ez = poles[p, 3] - ax, poles[p, 4] - ay, poles[p, 5] - az
-        reach = radius + poles[p, 6]
+def _ball_poles(bodies, b, radius, poles, material, threshold):
+    """Resolve ball ``b`` (of ``radius``) against every one of the :class:`Poles`."""
+    x = bodies.x
+    for p in range(poles.radius.shape[0]):
+        ax, ay, az = poles.start[p, 0], poles.start[p, 1], poles.start[p, 2]
+        ex, ey, ez = poles.end[p, 0] - ax, poles.end[p, 1] - ay, poles.end[p, 2] - az
+        reach = radius + poles.radius[p]
         t = ((x[b, 0] - ax) * ex + (x[b, 1] - ay) * ey + (x[b, 2] - az) * ez) / (ex * ex + ey * ey + ez * ez)
         t = min(max(t, 0.0), 1.0)
         dx = x[b, 0] - (ax + t * ex)
@@ -174,8 +236,7 @@ def _ball_poles(x, v, start, b, radius, poles, coef, threshold):
         if dist2 >= reach * reach:
             continue
         nx, ny, nz, dist = _direction(dx, dy, dz, dist2, ex, ey, ez)
-        _static_response(x, v, start, b, nx, ny, nz, reach - dist,
-                         coef[Contact.BALL_POLE, 0], coef[Contact.BALL_POLE, 1], threshold, True)
+        _static_response(bodies, b, Touch(nx, ny, nz, reach - dist), material, threshold, True)
 
 
 @kernel
@@ -193,9 +254,10 @@ def _segment_extent(x, segments):
 
 
 @kernel
-def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold, extent, near):
+def _ball_net(bodies, b, model, extent, near):
     """Resolve ball ``b`` against every net particle, then every segment's interior, in index
-    order. Returns how far that moved any body (a bound, m).
+    order (``model``: the :class:`~netgym.physics.model.KernelModel`). Returns how far that
+    moved any body (a bound, m).
 
     Broad phase for the segments: a segment touches the ball's bounding cube only if its first
     particle lies within ``radius`` + its extent of the ball's centre along every axis. The
@@ -206,12 +268,21 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, 
     contacts have moved no body farther than NEAR_MARGIN / 4 in all; beyond, every remaining
     segment is tested.
     """
-    e, mu = coef[Contact.BALL_NET, 0], coef[Contact.BALL_NET, 1]
+    count, moved = _ball_particles(bodies, b, model, extent, near)
+    return _ball_segments(bodies, b, model, near[:count], moved)
+
+
+@kernel
+def _ball_particles(bodies, b, model, extent, near):
+    """Resolve ball ``b`` against every net particle, in index order, and list in ``near`` the
+    particles within ``radius + extent + NEAR_MARGIN`` of it (see :func:`_ball_net`). Returns
+    (how many were listed, how far the contacts moved any body)."""
+    x, radius = bodies.x, model.ball_radius
     r2 = radius * radius
     listed = radius + extent + NEAR_MARGIN
     count = 0
     moved = 0.0
-    for k in range(n_net):
+    for k in range(model.n_net):
         dx = x[k, 0] - x[b, 0]
         if abs(dx) >= listed:
             continue
@@ -226,12 +297,24 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, 
         if dist2 >= r2:
             continue
         nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
-        moved += _pair_response(x, v, inv_mass, start, b, k, k, 0.0, -nx, -ny, -nz, radius - dist, e, mu, threshold)
+        moved += _pair_response(bodies, b, k, k, 0.0, Touch(-nx, -ny, -nz, radius - dist), model.materials.ball_net,
+                                model.restitution_threshold)
+    return count, moved
+
+
+@kernel
+def _ball_segments(bodies, b, model, near, moved):
+    """Resolve ball ``b`` against the interior of the segments of the ``near`` particles, in
+    segment order, while the contacts moved no body farther than NEAR_MARGIN / 4 in all
+    (``moved`` so far), then against every remaining segment (see :func:`_ball_net`). Returns
+    how far the ball's net contacts moved any body (a bound, m)."""
+    x, radius, segments, segment_start = bodies.x, model.ball_radius, model.segments, model.segment_start
+    r2 = radius * radius
     from_list = 4.0 * moved <= NEAR_MARGIN  # else every segment, in order
     n, s, end = 0, 0, 0  # next listed particle; next segment; end of the listed particle's segments
     while True:
         if from_list:
-            while s >= end and n < count:
+            while s >= end and n < near.shape[0]:
                 s, end = segment_start[near[n]], segment_start[near[n] + 1]
                 n += 1
             if s >= end:
@@ -262,15 +345,15 @@ def _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, 
         if dist2 >= r2:
             continue
         nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
-        moved += _pair_response(x, v, inv_mass, start, b, i, j, t, -nx, -ny, -nz, radius - dist, e, mu, threshold)
+        moved += _pair_response(bodies, b, i, j, t, Touch(-nx, -ny, -nz, radius - dist), model.materials.ball_net,
+                                model.restitution_threshold)
         from_list = from_list and 4.0 * moved <= NEAR_MARGIN  # the segments after this one, all of them
     return moved
 
 
 @kernel
-def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, segment_start, poles, coef, threshold, net_box,
-                     near):
-    """Resolve all contacts once, in a fixed order (deterministic Gauss-Seidel pass): ball/ball
+def resolve_contacts(bodies, model, net_box, near):
+    """Resolve all contacts of :class:`Bodies` once, in a fixed order (deterministic Gauss-Seidel pass): ball/ball
     pairs first, then each ball's poles and net, then the ground. A pair's projection pushes
     its balls along the line between them, partly along their supports; the supports' static
     friction, resolved after it, holds that push as it holds gravity's. (Resolved after the
@@ -278,9 +361,11 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, segment_sta
 
     ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
     sphere does not overlap it skips the particle and segment tests (broad phase); the others
-    test only the segments near them (see :func:`_ball_net`; ``segment_start``: where each
-    particle's segments begin, ``near``: scratch for ``n_net`` particle indices).
+    test only the segments near them (see :func:`_ball_net`; ``model``: the
+    :class:`~netgym.physics.model.KernelModel`, ``near``: scratch for ``n_net`` particle indices).
     """
+    x, inv_mass = bodies.x, bodies.inv_mass
+    n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold
     n = x.shape[0]
     reach = 2.0 * radius
     for b in range(n_net, n):
@@ -292,25 +377,22 @@ def resolve_contacts(x, v, inv_mass, start, n_net, radius, segments, segment_sta
             if dist2 >= reach * reach:
                 continue
             nx, ny, nz, dist = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
-            _pair_response(x, v, inv_mass, start, b, c, c, 0.0, nx, ny, nz, reach - dist,
-                           coef[Contact.BALL_BALL, 0], coef[Contact.BALL_BALL, 1], threshold)
+            _pair_response(bodies, b, c, c, 0.0, Touch(nx, ny, nz, reach - dist), materials.ball_ball, threshold)
     extent = -1.0  # the segments' largest extent, measured when a ball first meets the net
     moved = 0.0  # how far the net contacts since may have moved a particle, which stretches a segment as much
     for b in range(n_net, n):
-        _ball_poles(x, v, start, b, radius, poles, coef, threshold)
+        _ball_poles(bodies, b, radius, model.poles, materials.ball_pole, threshold)
         if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
                 and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
                 and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
             if extent < 0.0:
-                extent = _segment_extent(x, segments)
-            moved += _ball_net(x, v, inv_mass, start, b, radius, n_net, segments, segment_start, coef, threshold,
-                               extent + 2.0 * moved, near)
+                extent = _segment_extent(x, model.segments)
+            moved += _ball_net(bodies, b, model, extent + 2.0 * moved, near)
     for k in range(n):
         floor = radius if k >= n_net else 0.0
         if x[k, 2] < floor and inv_mass[k] > 0.0:
-            pair = Contact.BALL_GROUND if k >= n_net else Contact.NET_GROUND
-            _static_response(x, v, start, k, 0.0, 0.0, 1.0, floor - x[k, 2], coef[pair, 0], coef[pair, 1], threshold,
-                             k >= n_net)
+            material = materials.ball_ground if k >= n_net else materials.net_ground
+            _static_response(bodies, k, Touch(0.0, 0.0, 1.0, floor - x[k, 2]), material, threshold, k >= n_net)
 
 
 @kernel
@@ -334,13 +416,13 @@ def clearance(x, n_net, row, radius, segments, poles):
         nearest = min(nearest, (x[i, 0] + t * ex - cx) ** 2 + (x[i, 1] + t * ey - cy) ** 2
                       + (x[i, 2] + t * ez - cz) ** 2)
     gap = math.sqrt(nearest) - radius
-    for p in range(poles.shape[0]):
-        ax, ay, az = poles[p, 0], poles[p, 1], poles[p, 2]
-        ex, ey, ez = poles[p, 3] - ax, poles[p, 4] - ay, poles[p, 5] - az
+    for p in range(poles.radius.shape[0]):
+        ax, ay, az = poles.start[p, 0], poles.start[p, 1], poles.start[p, 2]
+        ex, ey, ez = poles.end[p, 0] - ax, poles.end[p, 1] - ay, poles.end[p, 2] - az
         t = ((cx - ax) * ex + (cy - ay) * ey + (cz - az) * ez) / (ex * ex + ey * ey + ez * ez)
         t = min(max(t, 0.0), 1.0)
         d = math.sqrt((cx - ax - t * ex) ** 2 + (cy - ay - t * ey) ** 2 + (cz - az - t * ez) ** 2)
-        gap = min(gap, d - radius - poles[p, 6])
+        gap = min(gap, d - radius - poles.radius[p])
     for b in range(n_net, x.shape[0]):
         if b != row:
             d = math.sqrt((x[b, 0] - cx) ** 2 + (x[b, 1] - cy) ** 2 + (x[b, 2] - cz) ** 2)

@@ -9,7 +9,7 @@ longer bounces slides, decelerating at ``friction * |g|``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -17,9 +17,9 @@ _MAX_ARCS = 200
 STILL_SPEED = 1e-9  # m/s: a ball sliding slower than this on the ground lies still
 
 
-@dataclass(frozen=True)
-class Ground:
-    """What a ball meets at the ground: its radius, gravity, restitution, friction, threshold."""
+class Ground(NamedTuple):
+    """What a ball meets at the ground: its radius, gravity, restitution, friction, threshold
+    (a record the kernels take too)."""
 
     radius: float
     gravity: float

@@ -56,20 +56,18 @@ class RestTest:
     :func:`~netgym.physics.stepping.relax`)."""
 
     def __init__(self, shape: tuple[int, int], window: int, displacement: float, damped: bool = True) -> None:
-        self.history = np.zeros((max(1, window), *shape))
-        self.memory = np.array([0.0, np.inf, 0.0, 0.0])
-        self.displacement = displacement
-        self.damped = damped
+        self.record = stepping.RestRecord(np.zeros((max(1, window), *shape)), stepping.new_rest_memory(),
+                                          float(displacement), bool(damped))
 
     @property
     def steps(self) -> int:
         """Steps taken by the last kernel call."""
-        return int(self.memory[2])
+        return int(self.record.memory[0]["steps"])
 
     @property
     def at_rest(self) -> bool:
         """True once the rest test has passed."""
-        return bool(self.memory[3])
+        return bool(self.record.memory[0]["at_rest"])
 
 
 def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps: int,
@@ -90,8 +88,7 @@ def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: in
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.history, rest.memory,
-        rest.displacement, rest.damped), rest.steps))
+        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.record), rest.steps))
 
 
 def _guarded(target: Integrand, settings: Settings, n_steps: int,

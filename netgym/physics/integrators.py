@@ -195,21 +195,37 @@ def _dot(a, b):
 
 
 @kernel
-def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tolerance, max_iterations,
-                        work, coef):
+def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, settings, scratch):
     """Linearised backward Euler (Baraff & Witkin 1998).
 
     Solves ``(M - dt D - dt^2 K) dv = dt (f + dt K v)`` by Jacobi-preconditioned conjugate
-    gradients, where K = df/dx (with the transverse term clamped at zero under compression so
-    the system stays positive definite) and D = df/dv; then v += dv, x += dt v.
+    gradients (to ``settings.cg_tolerance``, at most ``settings.cg_max_iterations``), where
+    K = df/dx (with the transverse term clamped at zero under compression so the system stays
+    positive definite) and D = df/dv; then v += dv, x += dt v. ``scratch``: a :class:`Scratch`.
     Returns the number of CG iterations used.
     """
-    f, r, p, z, q, dv, diag = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
-    n = x.shape[0]
+    work, coef = scratch.work, scratch.coef
+    mass_scale = 1.0 + dt * drag
+    _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef)
+    iterations = _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch)
+    dv = work[5]
+    for k in range(x.shape[0]):
+        for c in range(3):
+            v[k, c] += dv[k, c]
+            x[k, c] += dt * v[k, c]
+    return iterations
+
+
+@kernel
+def _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef):
+    """Assemble implicit Euler's system: the forces plus ``dt K v`` in ``work[0]``, the
+    diagonal of the system matrix (the preconditioner) in ``work[6]``, and each spring's axis
+    and stiffness terms (ux, uy, uz, iso, axial) in ``coef`` for :func:`_system_product`."""
+    f, diag = work[0], work[6]
     f[:] = 0.0
     spring_forces(x, v, springs, params, f)
     mass_scale = 1.0 + dt * drag
-    for k in range(n):
+    for k in range(x.shape[0]):
         w = inv_mass[k]
         m = 1.0 / w if w > 0.0 else 0.0
         for c in range(3):
@@ -236,6 +252,15 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tole
         along = (dt * dt * ks - iso) * (ux * rx + uy * ry + uz * rz)
         add_pair_force(f, j, i, (iso * rx + along * ux) / dt, (iso * ry + along * uy) / dt,
                        (iso * rz + along * uz) / dt)
+
+
+@kernel
+def _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch):
+    """Solve the system :func:`_implicit_system` assembled for ``dv`` (``work[5]``) by
+    Jacobi-preconditioned conjugate gradients from dv = 0; returns the iterations taken."""
+    work, coef = scratch.work, scratch.coef
+    f, r, p, z, q, dv, diag = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
+    n = inv_mass.shape[0]
     # r = rhs - A dv with dv = 0 initially; rhs = dt * f (already holds f + dt K v)
     for k in range(n):
         free = inv_mass[k] > 0.0
@@ -245,9 +270,9 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tole
             z[k, c] = r[k, c] / diag[k, c] if free else 0.0
             p[k, c] = z[k, c]
     rz_old = _dot(r, z)
-    threshold = tolerance * tolerance * _dot(r, r)
+    threshold = settings.cg_tolerance * settings.cg_tolerance * _dot(r, r)
     iterations = 0
-    while iterations < max_iterations and _dot(r, r) > threshold and rz_old > 0.0:
+    while iterations < settings.cg_max_iterations and _dot(r, r) > threshold and rz_old > 0.0:
         _system_product(p, inv_mass, mass_scale, springs, coef, q)
         alpha = rz_old / _dot(p, q)
         for k in range(n):
@@ -262,42 +287,41 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, tole
             for c in range(3):
                 p[k, c] = z[k, c] + beta * p[k, c]
         iterations += 1
-    for k in range(n):
-        for c in range(3):
-            v[k, c] += dv[k, c]
-            x[k, c] += dt * v[k, c]
     return iterations
 
 
-def smooth_step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
-    """One step of ``dt`` of the smooth forces with the integrator ``settings`` are made for (their
-    class, see :meth:`~netgym.physics.model.Settings.make`); implicit Euler adds its CG
-    iterations to ``stats``. For numba kernels only: the integrator is chosen when the calling
-    kernel compiles, so that it compiles that integrator alone."""
+def smooth_step(settings, x, v, inv_mass, model, dt, scratch, stats):
+    """One step of ``dt`` of the smooth forces of ``model`` (a
+    :class:`~netgym.physics.model.KernelModel`: gravity, the net's drag, the springs) with the
+    integrator ``settings`` are made for (their class, see
+    :meth:`~netgym.physics.model.Settings.make`); ``scratch``: a :class:`Scratch`; implicit Euler
+    adds its CG iterations to ``stats``. For numba kernels only: the integrator is chosen when
+    the calling kernel compiles, so that it compiles that integrator alone."""
     raise TypeError("smooth_step runs inside numba kernels only")
 
 
 @overload(smooth_step, jit_options={"error_model": "numpy"})
-def _smooth_step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
+def _smooth_step(settings, x, v, inv_mass, model, dt, scratch, stats):
     """The implementation of :func:`smooth_step` for the integrator of ``settings``' type."""
     integrator = getattr(getattr(settings, "instance_class", None), "INTEGRATOR", None)
     if integrator is None:
         raise NumbaTypeError(f"smooth_step takes settings of one integrator (Settings.make or Settings.of), "
                              f"not {settings}")
     if integrator == Integrator.RK4:
-        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
-            step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work)
+        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
+            step_rk4(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt, scratch.work)
     elif integrator == Integrator.IMEX_EULER:
-        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
-            step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef)
+        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
+            step_imex_euler(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt,
+                            scratch.work, scratch.coef)
     elif integrator == Integrator.IMPLICIT_EULER:
-        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
-            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt,
-                                                          settings.cg_tolerance, settings.cg_max_iterations,
-                                                          work, coef)
+        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
+            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, model.gravity, model.drag, model.springs,
+                                                          model.spring_params, dt, settings, scratch)
     else:
         symplectic = integrator == Integrator.SYMPLECTIC_EULER
 
-        def step(settings, x, v, inv_mass, gravity, drag, springs, params, dt, work, coef, stats):
-            step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplectic)
+        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
+            step_euler(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt,
+                       scratch.work, symplectic)
     return step

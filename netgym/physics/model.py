@@ -14,9 +14,10 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.config import SceneConfig, SimulationConfig
+from netgym.physics.contacts import Materials, Poles
 from netgym.physics.kinds import Contact, Integrator, SpringKind
 from netgym.physics.net import NetGeometry, build_net
-from netgym.physics.opening import Opening
+from netgym.physics.opening import Opening, OpeningRecord
 
 
 def ball_drag_constant(config: SceneConfig) -> float:
@@ -43,13 +44,13 @@ class KernelModel(NamedTuple):
     spring_params: np.ndarray
     segments: np.ndarray
     segment_start: np.ndarray
-    poles: np.ndarray
-    contact: np.ndarray
+    poles: Poles
+    materials: Materials
     restitution_threshold: float
     gravity: float
     drag: float
     ball_radius: float
-    opening: np.ndarray
+    opening: OpeningRecord
     ball_drag: float
     wind: np.ndarray
 
@@ -104,8 +105,8 @@ class Model:
     ``springs`` holds particle index pairs, ``spring_params`` the columns (rest length, ks, kd).
     ``segments`` are the structural springs, against which balls collide (not only the
     particles: springs never sink into a ball), in order of their first particle, and
-    ``segment_start`` where each particle's begin (:func:`index_segments`). ``poles`` rows are capsules
-    ``(ax, ay, az, bx, by, bz, radius)``. ``contact`` rows are (restitution, friction) per
+    ``segment_start`` where each particle's begin (:func:`index_segments`). ``poles`` are the
+    capsules (:class:`~netgym.physics.contacts.Poles`). ``contact`` rows are (restitution, friction) per
     :class:`Contact` kind. ``kernel`` is the same in the form the kernels take.
     """
 
@@ -118,7 +119,7 @@ class Model:
     spring_kind: np.ndarray
     segments: np.ndarray
     segment_start: np.ndarray
-    poles: np.ndarray
+    poles: Poles
     contact: np.ndarray
     restitution_threshold: float
     gravity: float
@@ -138,7 +139,9 @@ class Model:
         per_kind = np.array([[getattr(config.springs, k).ks, getattr(config.springs, k).kd] for k in SpringKind.labels()])
         params = np.column_stack([rest, per_kind[geo.spring_kind]])
         inv_mass = np.where(geo.fixed, 0.0, 1.0 / config.net.particle_mass)
-        poles = np.column_stack([geo.poles, np.full(len(geo.poles), config.net.pole_radius)])
+        poles = Poles(np.ascontiguousarray(geo.poles[:, :3], dtype=np.float64),
+                      np.ascontiguousarray(geo.poles[:, 3:6], dtype=np.float64),
+                      np.full(len(geo.poles), float(config.net.pole_radius)))
         contact = np.array([[getattr(config.contact, p).restitution, getattr(config.contact, p).friction]
                             for p in Contact.labels()])
         structural = geo.springs[geo.spring_kind == SpringKind.STRUCTURAL]
@@ -153,7 +156,7 @@ class Model:
             spring_kind=geo.spring_kind,
             segments=segments,
             segment_start=segment_start,
-            poles=np.ascontiguousarray(poles),
+            poles=poles,
             contact=contact,
             restitution_threshold=config.contact.restitution_threshold,
             gravity=config.simulation.gravity,
@@ -172,9 +175,9 @@ class Model:
         :func:`wavefront_order`."""
         order = wavefront_order(self.springs, self.n_net)
         springs, params = np.ascontiguousarray(self.springs[order]), np.ascontiguousarray(self.spring_params[order])
-        return KernelModel(self.n_net, springs, params, self.segments, self.segment_start, self.poles, self.contact,
-                           self.restitution_threshold, self.gravity, self.drag, self.ball_radius,
-                           self.opening.kernel_array(), self.ball_drag, self.wind)
+        return KernelModel(self.n_net, springs, params, self.segments, self.segment_start, self.poles,
+                           Materials.of_table(self.contact), self.restitution_threshold, self.gravity, self.drag,
+                           self.ball_radius, self.opening.kernel_record(), self.ball_drag, self.wind)
 
     @property
     def n_springs(self) -> int:

@@ -7,10 +7,27 @@ box, how far a point is from it, its packed form for the kernels) is answered he
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from netgym.config import NetConfig
+
+
+class OpeningRecord(NamedTuple):
+    """The opening as the kernels take it (see :class:`Opening`): the plane ``p[axis] = plane``,
+    ``sign`` (+1.0 or -1.0) towards its outer side, and the rectangle ``u_lo..u_hi`` x
+    ``w_lo..w_hi`` on the tangent axes ``u`` and ``w``."""
+
+    axis: int
+    sign: float
+    plane: float
+    u: int
+    w: int
+    u_lo: float
+    u_hi: float
+    w_lo: float
+    w_hi: float
 
 
 @dataclass(frozen=True)
@@ -80,7 +97,8 @@ class Opening:
             nearest[:, axis] = np.clip(points[:, axis], lo, hi)
         return np.linalg.norm(points - nearest, axis=1)
 
-    def kernel_array(self) -> np.ndarray:
-        """Packed form for the kernels: axis, sign, plane, u, w, u_lo, u_hi, w_lo, w_hi."""
+    def kernel_record(self) -> OpeningRecord:
+        """The form the kernels take."""
         (u, w), (ulo, wlo), (uhi, whi) = self.tangent_axes, self.tangent_lower, self.tangent_upper
-        return np.array([self.axis, self.sign, self.plane, u, w, ulo, uhi, wlo, whi], dtype=np.float64)
+        return OpeningRecord(int(self.axis), float(self.sign), float(self.plane), int(u), int(w), float(ulo),
+                             float(uhi), float(wlo), float(whi))

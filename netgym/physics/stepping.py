@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from netgym.physics.jit import kernel
 
 from netgym.physics.air import rk4_step
-from netgym.physics.contacts import resolve_contacts
+from netgym.physics.contacts import Bodies, resolve_contacts
 from netgym.physics.forces import kinetic_energy
 from netgym.physics.integrators import START_SLOT, smooth_step
 from netgym.physics.rows import copy_row, copy_rows
@@ -101,22 +102,20 @@ def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind
 
 @kernel
 def update_entered(x, before, n_net, entered, opening):
-    """Set a ball's flag when its centre crosses the opening inwards inside the rectangle,
-    clear it when it crosses outwards."""
-    axis = int(opening[0])
-    sign = opening[1]
-    u = int(opening[3])
-    w = int(opening[4])
+    """Set a ball's flag when its centre crosses the opening (an
+    :class:`~netgym.physics.opening.OpeningRecord`) inwards inside the rectangle, clear it when
+    it crosses outwards."""
+    axis, sign, plane, u, w = opening.axis, opening.sign, opening.plane, opening.u, opening.w
     for b in range(entered.shape[0]):
         k = n_net + b
-        h0 = sign * (before[b, axis] - opening[2])
-        h1 = sign * (x[k, axis] - opening[2])
+        h0 = sign * (before[b, axis] - plane)
+        h1 = sign * (x[k, axis] - plane)
         if (h0 >= 0.0) == (h1 >= 0.0):
             continue
         s = h0 / (h0 - h1)
         cu = before[b, u] + s * (x[k, u] - before[b, u])
         cw = before[b, w] + s * (x[k, w] - before[b, w])
-        if opening[5] <= cu <= opening[6] and opening[7] <= cw <= opening[8]:
+        if opening.u_lo <= cu <= opening.u_hi and opening.w_lo <= cw <= opening.w_hi:
             entered[b] = 1 if h1 < 0.0 else 0
 
 
@@ -135,11 +134,8 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
     :class:`~netgym.physics.model.Settings` for the passes of a step; ``buffers`` from
     :func:`_step_buffers`."""
     before_v, box, speeds, near = buffers
-    n_net, radius, gravity, drag = model.n_net, model.ball_radius, model.gravity, model.drag
-    springs, params = model.springs, model.spring_params
-    dt = settings.dt
-    work, coef = scratch.work, scratch.coef
-    start = work[START_SLOT]  # every body's position at the start of the substep
+    n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
+    start = scratch.work[START_SLOT]  # every body's position at the start of the substep
     before = start[n_net:]
     n_balls = x.shape[0] - n_net
     substeps = 1
@@ -151,12 +147,11 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
         for b in range(n_balls):
             for c in range(3):
                 before_v[b, c] = v[n_net + b, c]
-        smooth_step(settings, x, v, inv_mass, gravity, drag, springs, params, h, work, coef, stats)
+        smooth_step(settings, x, v, inv_mass, model, h, scratch, stats)
         if n_balls > 0:
-            _free_ball_flight(x, v, before, before_v, n_net, gravity, h, model.ball_drag, model.wind)
+            _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
             _net_box(x, n_net, box)
-        resolve_contacts(x, v, inv_mass, start, n_net, radius, model.segments, model.segment_start, model.poles,
-                         model.contact, model.restitution_threshold, box, near)
+        resolve_contacts(Bodies(x, v, inv_mass, start), model, box, near)
         update_entered(x, before, n_net, entered, model.opening)
         stats[0].substeps += 1
 
@@ -197,40 +192,62 @@ def _largest_displacement(x, earlier):
     return worst
 
 
-@kernel
-def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, history, memory, rest_displacement,
-          damped):
-    """Dynamic relaxation: :func:`advance` for at most ``n_steps`` steps, with kinetic damping of
-    the net when ``damped`` (every net particle's velocity is zeroed after a step whose net
-    kinetic energy fell, i.e. just past a peak), until no coordinate moved more than
-    ``rest_displacement`` over the last ``history.shape[0]`` steps. Balls keep their own dynamics (friction and restitution
-    settle them): zeroing them too would hold a collapsing pile back step by step, so that it
-    passed the rest test while still falling.
+class RestRecord(NamedTuple):
+    """What :func:`relax` carries across calls: ``history`` (window, n_bodies, 3), the positions
+    of the last steps; ``memory``, a one-record array of :data:`REST_MEMORY`; the rest test's
+    ``displacement`` (m) and whether the net is kinetically ``damped``."""
 
-    ``history`` (window, n_bodies, 3) holds the positions of the last steps and ``memory``
-    [steps recorded, last kinetic energy of the net, steps taken by this call, at rest (1.0 or
-    0.0)]: both carry the relaxation across calls. Returns OK or DIVERGED as :func:`advance` does.
+    history: np.ndarray
+    memory: np.ndarray
+    displacement: float
+    damped: bool
+
+
+REST_MEMORY = np.dtype([("recorded", np.int64), ("kinetic", np.float64), ("steps", np.int64), ("at_rest", np.bool_)])
+"""What a relaxation remembers besides its history: the steps recorded in it, the net's last
+kinetic energy, the steps taken by the last :func:`relax` call, and whether it came to rest."""
+
+
+def new_rest_memory() -> np.ndarray:
+    """A one-record array of :data:`REST_MEMORY` for a relaxation that has not begun."""
+    memory = np.zeros(1, dtype=REST_MEMORY)
+    memory[0]["kinetic"] = np.inf
+    return memory
+
+
+@kernel
+def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, rest):
+    """Dynamic relaxation: :func:`advance` for at most ``n_steps`` steps, with kinetic damping of
+    the net when ``rest.damped`` (every net particle's velocity is zeroed after a step whose net
+    kinetic energy fell, i.e. just past a peak), until no coordinate moved more than
+    ``rest.displacement`` over the last ``rest.history.shape[0]`` steps. Balls keep their own
+    dynamics (friction and restitution settle them): zeroing them too would hold a collapsing
+    pile back step by step, so that it passed the rest test while still falling.
+
+    ``rest`` is a :class:`RestRecord`; its history and memory carry the relaxation across
+    calls. Returns OK or DIVERGED as :func:`advance` does.
     """
+    history, memory = rest.history, rest.memory[0]
     window = history.shape[0]
     buffers = _step_buffers(x, model.n_net)
-    memory[2] = 0.0
-    memory[3] = 0.0
+    memory.steps = 0
+    memory.at_rest = False
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
         _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers)
-        memory[2] = i + 1
-        if damped:
+        memory.steps = i + 1
+        if rest.damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
-            if kinetic < memory[1]:
+            if kinetic < memory.kinetic:
                 v[:model.n_net] = 0.0
                 kinetic = 0.0
-            memory[1] = kinetic
-        recorded = int(memory[0])
+            memory.kinetic = kinetic
+        recorded = memory.recorded
         slot = recorded % window
-        if recorded >= window and _largest_displacement(x, history[slot]) < rest_displacement:
-            memory[3] = 1.0
+        if recorded >= window and _largest_displacement(x, history[slot]) < rest.displacement:
+            memory.at_rest = True
             return OK
         copy_rows(history[slot], x)
-        memory[0] = recorded + 1
+        memory.recorded = recorded + 1
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED

@@ -18,10 +18,10 @@ def survey(x, v, row, poles, box):
     for c in range(3):
         box[c] = math.inf
         box[c + 3] = -math.inf
-    for p in range(poles.shape[0]):
+    for p in range(poles.radius.shape[0]):
         for c in range(3):
-            box[c] = min(box[c], poles[p, c], poles[p, c + 3])
-            box[c + 3] = max(box[c + 3], poles[p, c], poles[p, c + 3])
+            box[c] = min(box[c], poles.start[p, c], poles.end[p, c])
+            box[c + 3] = max(box[c + 3], poles.start[p, c], poles.end[p, c])
     others = 0.0
     for k in range(x.shape[0]):
         if k != row:

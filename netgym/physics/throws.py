@@ -357,9 +357,7 @@ class Throw:
         if m.ball_drag == 0.0:
             return flight.advance(x, v, tau, self.ground)
         p, u = np.array(x, dtype=np.float64), np.array(v, dtype=np.float64)
-        g = self.ground
-        air.fly(p, u, tau, m.gravity, m.ball_drag, m.wind, g.radius, g.restitution, g.friction, g.threshold,
-                air.MAX_FLIGHT_STEP)
+        air.fly(p, u, tau, m.ball_drag, m.wind, self.ground, air.MAX_FLIGHT_STEP)
         return p, u
 
     def _flight_time(self) -> float:
@@ -393,7 +391,7 @@ class Throw:
         m, s = self.sim.model, self.sim.state
         box = np.empty(6)
         others = survey(s.x, s.v, self.ball.row, m.poles, box)
-        about = max(float(m.poles[:, 6].max(initial=0.0)), m.ball_radius if self.sim.n_balls > 1 else 0.0)
+        about = max(float(m.poles.radius.max(initial=0.0)), m.ball_radius if self.sim.n_balls > 1 else 0.0)
         grow = m.ball_radius + about + margin
         return others, box[:3] - grow, box[3:] + grow
 
