@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -88,3 +89,28 @@ def test_a_film_records_each_instant_once() -> None:
         sim.state.time = time
         film(sim)
     assert recorded == [0.0, 0.0995]
+
+
+def test_a_filmed_request_stops_at_each_instant_and_ends_as_the_whole() -> None:
+    """The driver cuts an Integrate request at the substeps nearest a film's instants: the
+    state ends bitwise where the uncut request leaves it, and every instant is filmed once."""
+    from netgym.physics.plans import Integrate
+    from netgym.physics.simulator import Simulator
+
+    filmed, plain = Simulator("basket"), Simulator("basket")
+    for sim in (filmed, plain):
+        sim.launch_ball([0.2, 0.1, 3.6], [1.0, 0.0, 0.0])
+    times: list[float] = []
+    before = filmed.substeps, plain.substeps
+
+    def whole():
+        yield Integrate(100, filmed.integrator, filmed.dt)
+
+    filmed.run(whole(), Film(FrameClock(1.0 / 30.0), lambda s: times.append(s.state.time)))
+    plain.step(100)
+    assert np.array_equal(filmed.state.x, plain.state.x) and np.array_equal(filmed.state.v, plain.state.v)
+    assert filmed.state.time == plain.state.time
+    assert filmed.substeps - before[0] == plain.substeps - before[1] == 100
+    k = np.round(np.array(times) * 30.0)
+    assert np.array_equal(k, np.arange(1, 1 + math.floor(100 * filmed.dt * 30.0 + 1e-9)))
+    assert np.abs(np.array(times) - k / 30.0).max() <= 0.5 * filmed.dt + 1e-9

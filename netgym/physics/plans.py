@@ -5,8 +5,9 @@ relaxation of the net) and yields typed requests: :class:`Integrate` (integrate 
 steps), :class:`Relax` (relax for at most this many steps, until a rest test passes) or
 :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
-requests of a simulator's plan, one integration call per :class:`Integrate`, and throws a
-divergence back into the plan.
+requests of a simulator's plan, one integration call per :class:`Integrate` (one per piece
+between frame instants when it films, with a :class:`~netgym.physics.frames.Film`), and throws
+a divergence back into the plan.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from typing import Any, Protocol, Union
 from netgym.physics.frames import Film
 
 from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, relax
-from netgym.physics.model import KernelModel, Settings, State
+from netgym.physics.model import KernelModel, Settings
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
 

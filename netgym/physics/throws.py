@@ -230,7 +230,7 @@ class Throw:
         away, is at rest, or cannot reach the opening), or None; when nothing but the ball moves
         (slower than ``sleep_speed``) and it could fly clear for a step, the scene goes to sleep,
         so that the ball flies in closed form again."""
-        sim, course = self.sim, self.course
+        sim = self.sim
         others, lo, hi = self._survey(TUNING.awake_margin)
         self._remember_positions()
         reason = self._decided(self._at_rest(), lo, hi)
