@@ -129,10 +129,9 @@ def _step_buffers(x, n_net):
 
 @kernel
 def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
-    """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast; the
-    only kernel that unpacks a :class:`~netgym.physics.model.KernelModel` and its
-    :class:`~netgym.physics.model.Settings` for the passes of a step; ``buffers`` from
-    :func:`_step_buffers`."""
+    """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast: the
+    passes of a substep in order, each handed the :class:`~netgym.physics.model.KernelModel`
+    or the parts of it it needs; ``buffers`` from :func:`_step_buffers`."""
     before_v, box, speeds, near = buffers
     n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
     start = scratch.work[START_SLOT]  # every body's position at the start of the substep

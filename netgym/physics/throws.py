@@ -23,7 +23,6 @@ import numpy as np
 from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
 from netgym.physics import air, contacts, flight, stepping
-from netgym.physics.kinds import Contact
 from netgym.physics.outcomes import Reason
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick
 from netgym.physics.surroundings import still_since, survey
@@ -126,9 +125,9 @@ class Throw:
         self.fast = fast
         self.rule = sim.capture_rule
         self.film: Film | None = None  # the simulator's, while the plan runs
-        m = sim.model
-        self.ground = flight.Ground(m.ball_radius, m.gravity, m.contact[Contact.BALL_GROUND, 0],
-                                    m.contact[Contact.BALL_GROUND, 1], m.restitution_threshold)
+        m, ground = sim.model, sim.kernel_model.materials.ball_ground
+        self.ground = flight.Ground(m.ball_radius, m.gravity, ground.restitution, ground.friction,
+                                    m.restitution_threshold)
         self.ball = Ball(-1, -1)
         self.course: Course | None = None
 
