@@ -1,4 +1,9 @@
-"""Shared fixtures: simulators are cached per configuration, tests get fresh copies of state."""
+"""Shared fixtures: simulators are cached per configuration, tests get fresh copies of state.
+
+When the suite runs on several processes (pytest-xdist, the default), the controller first
+compiles the kernels an episode of each scene uses (or loads them from numba's cache), so that
+the workers load them from the cache instead of each compiling them at once.
+"""
 
 from __future__ import annotations
 
@@ -12,6 +17,20 @@ from netgym.physics.simulator import Simulator
 settings.register_profile("ci", max_examples=25, deadline=None, derandomize=True)
 settings.register_profile("thorough", max_examples=300, deadline=None)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+WARM_UP_ENVIRONMENTS = ("NetCatch-v0", "NetCatchGoal-v0")
+"""One oracle episode of each compiles the throw's and the pause's kernels of both scenes."""
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """In the controller of a parallel run only: compile the kernels before the workers start."""
+    workers = getattr(config.option, "numprocesses", None)
+    if not workers or hasattr(config, "workerinput") or config.option.collectonly:
+        return
+    from agents.warm_up import compile_kernels
+
+    for env_id in WARM_UP_ENVIRONMENTS:
+        compile_kernels(env_id)
 
 
 @pytest.fixture

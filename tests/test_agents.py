@@ -41,6 +41,7 @@ def test_loading_a_model_without_stable_baselines3_names_the_extra(monkeypatch: 
         load_policy(PRETRAINED)
 
 
+@pytest.mark.slow
 def test_train_ppo_quick_writes_a_loadable_model(tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, "scripts/train_ppo.py", "--quick", "--out", str(tmp_path)],
                           cwd=ROOT, capture_output=True, text=True, timeout=600)
@@ -68,6 +69,7 @@ def _assert_trained_with_the_yml_settings(model) -> None:
     assert model.policy_kwargs == parse_policy_kwargs(zoo["policy_kwargs"])
 
 
+@pytest.mark.slow
 def test_shipped_model_scores_well_above_random() -> None:
     assert PRETRAINED.exists(), "agents/pretrained/ppo_netcatch.zip is missing"
     ppo = evaluate(load_policy(PRETRAINED), episodes=20, seed=777)

@@ -90,6 +90,7 @@ def test_kernel_free_flight_through_air_matches_the_fine_flight() -> None:
     assert np.linalg.norm(sim.ball_positions[0] - want) < 1e-7
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("wind", [[0.0, 0.0, 0.0], [3.0, -2.0, 0.0]])
 def test_fast_path_through_air_agrees_with_full_simulation(wind: list[float]) -> None:
     """The fast path's RK4 flight, its decisions (no energy bound when the wind can feed the

@@ -73,6 +73,7 @@ def test_a_ball_launched_behind_the_line_is_not_out_of_play() -> None:
     assert not result.captured and result.reason == "flies_away"
 
 
+@pytest.mark.slow
 def test_a_goal_is_taken_out_and_an_untouched_goal_needs_no_pause() -> None:
     """Under ``line`` the scored ball leaves the scene when the goal is decided (as after a goal
     in the sport); one that never touched the net leaves it asleep, so the next throw starts at
@@ -127,6 +128,7 @@ def test_held_decides_once_the_ball_cannot_reach_the_mouth_before_the_time_limit
     assert not leaving.captured and leaving.reason != "cannot_reach_opening"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rule", ["line", "held"])
 def test_goal_fast_path_agrees_with_full_simulation(rule: str) -> None:
     throws = sample_throws("goal", 60, seed=5)

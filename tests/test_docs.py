@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import gymnasium as gym
+import pytest
 
 import netgym
 
@@ -103,6 +104,7 @@ def test_readme_is_an_entry_point() -> None:
         assert (ROOT / link).exists(), link
 
 
+@pytest.mark.slow
 def test_the_docs_site_builds_with_warnings_as_errors(tmp_path: Path) -> None:
     result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(tmp_path / "site")], cwd=ROOT,
                             capture_output=True, text=True, timeout=600,

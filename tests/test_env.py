@@ -158,6 +158,7 @@ def test_metadata_declares_render_fps_and_modes() -> None:
     assert set(NetCatchEnv.metadata["render_modes"]) == {"human", "rgb_array", "rgb_array_list", "replay_list"}
 
 
+@pytest.mark.slow
 def test_works_in_stable_baselines3_subprocess_vec_env() -> None:
     from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.vec_env import SubprocVecEnv

@@ -3,10 +3,13 @@ from launch to the time limit, on 1000 seeded throws into the default scene."""
 
 from __future__ import annotations
 
+import pytest
+
 from netgym.bench.fast_path import compare, summarise
 from netgym.bench.throws import sample_throws
 
 
+@pytest.mark.slow
 def test_fast_path_agrees_with_full_simulation_on_1000_throws() -> None:
     outcomes = compare("basket", sample_throws("basket", 1000, seed=2024), workers=2)
     summary = summarise(outcomes)
@@ -17,6 +20,7 @@ def test_fast_path_agrees_with_full_simulation_on_1000_throws() -> None:
     assert summary["fast_throws_per_s"] > summary["full_throws_per_s"]
 
 
+@pytest.mark.slow
 def test_a_reference_at_the_scenes_own_step_is_the_full_simulation_throw_for_throw() -> None:
     """The reference runs the same scene, overrides included (here the ``held`` rule: the fifth
     throw is a goal under ``line`` but comes back out, a miss under ``held``), only at its own

@@ -30,6 +30,7 @@ INTEGRATOR_KERNELS = {
 }
 
 
+@pytest.mark.slow
 def test_a_cold_first_step_compiles_only_the_scenes_integrator_and_says_so_once(monkeypatch) -> None:
     monkeypatch.delenv(SHOWN, raising=False)
     cold, warm = cold_and_warm("NetCatch-v0")
@@ -54,6 +55,7 @@ def test_settings_are_of_their_integrators_class() -> None:
                         config.divergence_speed)
 
 
+@pytest.mark.slow
 def test_settings_that_name_no_integrator_are_a_clear_error(basket: Simulator) -> None:
     s, model = basket.state, basket.kernel_model
     plain = Settings(Integrator.IMEX_EULER, 1e-3, 0.25, 1e-8, 100, 1e3)

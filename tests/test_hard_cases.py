@@ -154,6 +154,7 @@ def test_stiff_net_with_implicit_euler_at_10ms_stays_finite() -> None:
     assert 0.0 < sim.ball_positions[0, 2] < 3.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("integrator", "dt"), [
     ("explicit_euler", 1e-3), ("symplectic_euler", 5e-4), ("rk4", 1e-3), ("implicit_euler", 1e-2),
     ("imex_euler", 5e-3)])

@@ -8,6 +8,8 @@ import sys
 import textwrap
 from pathlib import Path
 
+import pytest
+
 from netgym.physics.kernel_cache import STAMP, drop_stale_kernels
 
 CALLER = """
@@ -68,6 +70,7 @@ def test_the_guard_recompiles_every_kernel_after_any_source_change(tmp_path: Pat
     assert _call(tmp_path, guarded=True) == "2"
 
 
+@pytest.mark.slow
 def test_the_guard_works_where_numba_cache_dir_puts_the_cache(tmp_path: Path) -> None:
     cache_dir = tmp_path / "numba-cache"
     pkg = _write_package(tmp_path, 1)

@@ -110,6 +110,7 @@ def _final_positions(sim: Simulator, t_end: float) -> np.ndarray:
     return sim.state.x.copy()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("integrator", "order", "dts"), [
     ("explicit_euler", 1, [2e-4, 1e-4, 5e-5, 2.5e-5]),
     ("symplectic_euler", 1, [2e-4, 1e-4, 5e-5, 2.5e-5]),

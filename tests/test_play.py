@@ -16,6 +16,7 @@ def _key(key: int):
     return pygame.event.Event(pygame.KEYDOWN, key=key)
 
 
+@pytest.mark.slow
 def test_keys_aim_throw_score_and_quit() -> None:
     play = Play(balls=2, seed=0)
     play.env.metadata = dict(play.env.metadata, render_fps=1000)  # do not wait in tests

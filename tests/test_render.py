@@ -107,6 +107,7 @@ def test_captions_name_the_throw_and_its_outcome_once_decided() -> None:
     assert np.array_equal(captioned[60:], frame[60:]) and caption_frame(frame, "") is frame
 
 
+@pytest.mark.slow
 def test_human_mode_runs_headless() -> None:
     pytest.importorskip("pygame")
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
@@ -137,6 +138,7 @@ def _episode(render_mode: str | None, render_settling: bool = False, scene: str 
     return steps, frames
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("scene", ["basket", "goal"])
 def test_rendering_changes_nothing(scene: str) -> None:
     """Filming throws (and the settling) stops integration at frame instants, yet every outcome,
@@ -146,6 +148,7 @@ def test_rendering_changes_nothing(scene: str) -> None:
     assert _episode("rgb_array_list", render_settling=True, scene=scene)[0] == plain
 
 
+@pytest.mark.slow
 def test_every_throw_is_filmed_at_render_fps() -> None:
     """Each step returns the frames of its throw from the launch, misses decided at launch too
     (their closed-form flight is drawn to the landing); settling frames only on request."""
@@ -177,6 +180,7 @@ def test_frames_are_one_period_apart() -> None:
         assert len(k) >= math.floor(result.time * 30.0)
 
 
+@pytest.mark.slow
 def test_recorded_episode_video_holds_every_throw_at_render_fps(tmp_path) -> None:
     """RecordEpisodeVideo writes an MP4 per episode with every frame of every throw (and each
     throw's last frame held): its length is at least the simulated time of the throws at

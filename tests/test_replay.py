@@ -37,6 +37,7 @@ def _steps(render_mode: str, throws: int = 2) -> list[list]:
     return out
 
 
+@pytest.mark.slow
 def test_snapshots_are_taken_at_the_frame_instants() -> None:
     """replay_list takes a snapshot wherever rgb_array_list draws a frame, 1 / render_fps
     simulated seconds apart; the reset's is the state the episode starts from."""
@@ -104,6 +105,7 @@ def screenshot(page: Path, png: Path) -> np.ndarray:
         return np.asarray(image.convert("RGB")).astype(int)
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not on PATH (apt-get install chromium)")
 def test_page_shows_the_net_in_a_browser(page: Path, tmp_path: Path) -> None:
     """Opened from a file:// URL with no network, the page draws the 3D scene: the sky-coloured

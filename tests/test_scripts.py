@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from netgym.bench.env_throughput import SETUPS
 from netgym.config import INTEGRATORS
 
@@ -19,6 +21,7 @@ def _run(*args: str) -> str:
     return done.stdout
 
 
+@pytest.mark.slow
 def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
     out = _run("scripts/bench_sim.py", "--quick")
     rows = [line for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
@@ -28,6 +31,7 @@ def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
         assert substeps_per_s > 0
 
 
+@pytest.mark.slow
 def test_bench_episodes_quick_books_the_settling_and_runs_a_candidate_beside_each_row() -> None:
     out = _run("scripts/bench_episodes.py", "--quick", "--candidate", "simulation.settle_dt=0.002")
     rows = [line.split("|") for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
@@ -46,6 +50,7 @@ def test_python_m_netgym_reports_a_throw() -> None:
     assert "CAPTURED" in out and "substeps" in out
 
 
+@pytest.mark.slow
 def test_python_m_agents_evaluates_the_shipped_model_beside_oracle_and_random() -> None:
     """The main job of the README's first command, on 4 episodes: each policy's capture rate,
     its throughput timed apart from the loading of the kernels and the model."""
@@ -56,6 +61,7 @@ def test_python_m_agents_evaluates_the_shipped_model_beside_oracle_and_random() 
     assert "simulator ready in" in out and all("throws/s" in line for line in rows.values())
 
 
+@pytest.mark.slow
 def test_bench_env_quick_reports_agreement_and_throughput() -> None:
     out = _run("scripts/bench_env.py", "--quick")
     rows = [line for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
@@ -66,6 +72,7 @@ def test_bench_env_quick_reports_agreement_and_throughput() -> None:
     assert len(rates) == len(SETUPS) and all(float(r[2]) > 0 for r in rates)
 
 
+@pytest.mark.slow
 def test_bench_env_quick_compares_one_case_with_a_finer_reference() -> None:
     out = _run("scripts/bench_env.py", "--quick", "--case", "goal, held", "--reference-dt", "0.00025")
     header, _, row = [line.split("|") for line in out.splitlines() if line.startswith("|")][:3]
@@ -75,6 +82,7 @@ def test_bench_env_quick_compares_one_case_with_a_finer_reference() -> None:
     assert "env steps/s" not in out  # one case asked for: the vector environments are left out
 
 
+@pytest.mark.slow
 def test_render_throw_writes_a_gif(tmp_path) -> None:
     from PIL import Image
 
@@ -94,6 +102,7 @@ def test_train_rllib_quick_runs_one_iteration(tmp_path) -> None:
     assert "env runners healthy 2" in out  # the smoke test samples with two env runner processes
 
 
+@pytest.mark.slow
 def test_report_quick_covers_every_section() -> None:
     out = _run("scripts/report.py", "--quick")
     for heading in ("## 1. Work-precision", "## 2. Outcome accuracy", "## 3. Stability limits",
@@ -108,12 +117,14 @@ def test_report_quick_covers_every_section() -> None:
     assert "| default (IMEX Euler, 11.5 ms, to 0.1 m/s) |" in out
 
 
+@pytest.mark.slow
 def test_variants_table_quick_prints_every_agent() -> None:
     out = _run("scripts/variants_table.py", "--quick", "--workers", "1")
     rows = [line for line in out.splitlines() if line.startswith("| NetCatch")]
     assert len(rows) == 11 and all("% (" in row for row in rows)
 
 
+@pytest.mark.slow
 def test_episode_agreement_quick_compares_every_throw() -> None:
     out = _run("scripts/episode_agreement.py", "--quick", "--candidate", "simulation.settle_speed=0.02")
     rows = {tuple(cell.strip() for cell in line.split("|")[1:4]): line.split("|") for line in out.splitlines()
@@ -125,6 +136,7 @@ def test_episode_agreement_quick_compares_every_throw() -> None:
     assert "Reference: 2 basket episodes of 3 throws" in out
 
 
+@pytest.mark.slow
 def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same_nets() -> None:
     from netgym.bench.pause_accuracy import PAUSES
 
@@ -153,6 +165,7 @@ def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same
         assert sum(int(row[3]) for row in groups if row[2].strip() == label) == int(by_label[label][2])
 
 
+@pytest.mark.slow
 def test_pile_creep_quick_measures_every_arranged_pile_and_the_loaded_nets() -> None:
     from netgym.bench.creep import ARRANGED
 
@@ -168,6 +181,7 @@ def test_pile_creep_quick_measures_every_arranged_pile_and_the_loaded_nets() -> 
     assert 0.0 <= p50 <= p90 <= worst
 
 
+@pytest.mark.slow
 def test_held_goal_phases_quick_times_each_capture_before_its_decision() -> None:
     out = _run("scripts/held_goal_phases.py", "--quick").splitlines()
     captured = int(out[0].split()[0])
@@ -183,12 +197,14 @@ def test_held_goal_phases_quick_times_each_capture_before_its_decision() -> None
     assert moving[2] <= decided[2] and bouncing[2] <= decided[2]  # nothing is sampled after the decision
 
 
+@pytest.mark.slow
 def test_evaluate_reads_the_env_saved_with_a_variant_model() -> None:
     """The windy model is evaluated on NetCatchWindy-v0 with no --env (5 throws an episode)."""
     out = _run("scripts/evaluate.py", "agents/pretrained/ppo_windy.zip", "--episodes", "2")
     assert "ppo_windy.zip on NetCatchWindy-v0: capture rate" in out and "/10 throws" in out
 
 
+@pytest.mark.slow
 def test_evaluate_names_both_envs_when_the_model_cannot_read_the_one_asked_for() -> None:
     done = subprocess.run([sys.executable, "scripts/evaluate.py", "agents/pretrained/ppo_windy.zip", "--env",
                            "NetCatch-v0", "--episodes", "1"], cwd=ROOT, capture_output=True, text=True, timeout=600)

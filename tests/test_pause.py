@@ -104,6 +104,7 @@ def test_a_pause_that_cannot_come_to_rest_in_time_raises_a_named_error() -> None
     assert np.isfinite(sim.state.x).all() and sim.awake
 
 
+@pytest.mark.slow
 def test_the_pause_leaves_piles_as_still_as_a_relaxation_at_the_scenes_own_step() -> None:
     """After the pause (IMEX Euler at 11.5 ms), loaded nets of 5-10 balls simulated on for a
     second move no more than after the same relaxation at the scene's own 2 ms step (medians
