@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from netgym.physics.jit import kernel
+from netgym.physics.jit import inline_kernel, kernel
 from netgym.physics.kinds import Contact
 from netgym.physics.rows import add_scaled
 
@@ -268,21 +268,23 @@ def _ball_net(bodies, b, model, extent, near):
     contacts have moved no body farther than NEAR_MARGIN / 4 in all; beyond, every remaining
     segment is tested.
     """
-    count, moved = _ball_particles(bodies, b, model, extent, near)
-    return _ball_segments(bodies, b, model, near[:count], moved)
+    radius, material, threshold = model.ball_radius, model.materials.ball_net, model.restitution_threshold
+    count, moved = _ball_particles(bodies, b, radius, model.n_net, material, threshold, extent, near)
+    return _ball_segments(bodies, b, radius, model.segments, model.segment_start, material, threshold, near[:count],
+                          moved)
 
 
-@kernel
-def _ball_particles(bodies, b, model, extent, near):
-    """Resolve ball ``b`` against every net particle, in index order, and list in ``near`` the
-    particles within ``radius + extent + NEAR_MARGIN`` of it (see :func:`_ball_net`). Returns
-    (how many were listed, how far the contacts moved any body)."""
-    x, radius = bodies.x, model.ball_radius
+@inline_kernel
+def _ball_particles(bodies, b, radius, n_net, material, threshold, extent, near):
+    """Resolve ball ``b`` (of ``radius``) against every net particle, in index order, and list
+    in ``near`` the particles within ``radius + extent + NEAR_MARGIN`` of it (see
+    :func:`_ball_net`). Returns (how many were listed, how far the contacts moved any body)."""
+    x = bodies.x
     r2 = radius * radius
     listed = radius + extent + NEAR_MARGIN
     count = 0
     moved = 0.0
-    for k in range(model.n_net):
+    for k in range(n_net):
         dx = x[k, 0] - x[b, 0]
         if abs(dx) >= listed:
             continue
@@ -297,18 +299,17 @@ def _ball_particles(bodies, b, model, extent, near):
         if dist2 >= r2:
             continue
         nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, 0.0, 0.0, 0.0)  # out of the particle, towards the ball
-        moved += _pair_response(bodies, b, k, k, 0.0, Touch(-nx, -ny, -nz, radius - dist), model.materials.ball_net,
-                                model.restitution_threshold)
+        moved += _pair_response(bodies, b, k, k, 0.0, Touch(-nx, -ny, -nz, radius - dist), material, threshold)
     return count, moved
 
 
-@kernel
-def _ball_segments(bodies, b, model, near, moved):
+@inline_kernel
+def _ball_segments(bodies, b, radius, segments, segment_start, material, threshold, near, moved):
     """Resolve ball ``b`` against the interior of the segments of the ``near`` particles, in
     segment order, while the contacts moved no body farther than NEAR_MARGIN / 4 in all
     (``moved`` so far), then against every remaining segment (see :func:`_ball_net`). Returns
     how far the ball's net contacts moved any body (a bound, m)."""
-    x, radius, segments, segment_start = bodies.x, model.ball_radius, model.segments, model.segment_start
+    x = bodies.x
     r2 = radius * radius
     from_list = 4.0 * moved <= NEAR_MARGIN  # else every segment, in order
     n, s, end = 0, 0, 0  # next listed particle; next segment; end of the listed particle's segments
@@ -345,8 +346,7 @@ def _ball_segments(bodies, b, model, near, moved):
         if dist2 >= r2:
             continue
         nx, ny, nz, dist = _direction(-dx, -dy, -dz, dist2, ex, ey, ez)  # out of the segment, towards the ball
-        moved += _pair_response(bodies, b, i, j, t, Touch(-nx, -ny, -nz, radius - dist), model.materials.ball_net,
-                                model.restitution_threshold)
+        moved += _pair_response(bodies, b, i, j, t, Touch(-nx, -ny, -nz, radius - dist), material, threshold)
         from_list = from_list and 4.0 * moved <= NEAR_MARGIN  # the segments after this one, all of them
     return moved
 
