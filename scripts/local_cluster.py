@@ -119,7 +119,8 @@ def inside(args: argparse.Namespace) -> int:
         if args.nodes == 2:
             start_node(args.port, args.worker_cpus, head=False, temp_dir=temp_dir)
         cpus = f"{args.head_cpus} + {args.worker_cpus}" if args.nodes == 2 else f"{args.head_cpus}"
-        print(f"local_cluster: {args.nodes} node(s) up at 127.0.0.1:{args.port} ({cpus} CPUs)", flush=True)
+        print(f"local_cluster: {args.nodes} node(s) up at 127.0.0.1:{args.port} ({cpus} CPUs; temp dir {temp_dir})",
+              flush=True)
         pattern = None if args.kill_worker_on is None else re.compile(args.kill_worker_on)
         return run_command(args.command, args.port, pattern, args.worker_cpus, args.restart_after, temp_dir)
     finally:
