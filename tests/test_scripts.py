@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from netgym.bench.env_throughput import SETUPS
+from netgym.bench.episodes import ROWS
 from netgym.config import INTEGRATORS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -35,7 +36,8 @@ def test_bench_sim_quick_prints_every_integrator_and_scene() -> None:
 def test_bench_episodes_quick_books_the_settling_and_runs_a_candidate_beside_each_row() -> None:
     out = _run("scripts/bench_episodes.py", "--quick", "--candidate", "simulation.settle_dt=0.002")
     rows = [line.split("|") for line in out.splitlines() if line.startswith("| basket") or line.startswith("| goal")]
-    assert len(rows) == 12
+    assert len(rows) == 2 * len(ROWS)  # every row, with and without the candidate
+    assert [cell.strip() for cell in rows[-2][1:4]] == ["basket", "oracle", "1"]  # the best case, in the same run
     oracle_basket, candidate = rows[0], rows[1]
     assert [cell.strip() for cell in rows[2][1:4]] == ["basket", "shipped PPO", "3"]  # what a trained agent pays
     assert oracle_basket[1].strip() == "basket" and candidate[1].strip() == "basket (simulation.settle_dt=0.002)"
