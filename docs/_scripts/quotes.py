@@ -25,6 +25,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
+from netgym.bench import roofline  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
 
 REPORT = "docs/BENCHMARKS.md"
@@ -198,6 +199,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "capture-rates": capture_rates,
     "variants": variants,
     "at-a-glance": at_a_glance,
+    "roofline": lambda: roofline.to_markdown(read_results(RESULTS / "roofline.json")),
     "variants-summary": variants_summary,
     "learning-curve": lambda: learning_curve("ppo_curve"),
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
@@ -206,7 +208,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
 }
 """How each quoted block is made."""
 
-FILES = ("README.md", "docs/AGENTS.md", "docs/index.md", "docs/getting-started.md")
+FILES = ("README.md", "docs/AGENTS.md", "docs/index.md", "docs/getting-started.md", "docs/BENCHMARKS.md")
 """The files whose quoted blocks are generated."""
 
 _BLOCK = re.compile(r"(<!-- quote:([\w-]+) -->\n)(.*?)(<!-- /quote:\2 -->)", re.S)

@@ -16,12 +16,14 @@ from netgym.bench import (
     episode_agreement,
     episodes,
     pause_accuracy,
+    roofline,
     sim_throughput,
 )
 from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import CASES, compare, summarise
 from netgym.bench.outcomes import outcome_accuracy
 from netgym.bench.peers import peers
+from netgym.bench.results import RESULTS, read_results
 from netgym.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
@@ -42,6 +44,7 @@ from netgym.bench.report_text import (
     PAUSE_ACCURACY_TEXT,
     PAUSE_TEXT,
     PILE_FRICTION_TEXT,
+    ROOFLINE_TEXT,
     STATIC_PAUSE_TEXT,
     STEP_LIMIT_TEXT,
     SUBSTEPS_TEXT,
@@ -160,6 +163,7 @@ def _gains(report: Report) -> list[str]:
         BROAD_PHASE_TEXT,
         DECIDED_EARLY_TEXT,
         PILE_FRICTION_TEXT,
+    ROOFLINE_TEXT,
         STATIC_PAUSE_TEXT,
     ]
 
@@ -251,4 +255,14 @@ def to_markdown(report: Report) -> str:
     out += ["", "## 8. Do the shortcuts change episodes?", "", AGREEMENT_TEXT, "", report.agreement, "", AGREEMENT_NOTES]
     out += ["", "## 9. How near the pause comes to the equilibrium", "", PAUSE_ACCURACY_TEXT, "", report.pause, "", PAUSE_ACCURACY_NOTES,
             "", CREEP_TEXT, "", report.creep]
+    out += ["", "## 10. The spring pass against its roofline", "", ROOFLINE_TEXT, "", "<!-- quote:roofline -->",
+            _roofline_table(), "<!-- /quote:roofline -->"]
     return "\n".join(out) + "\n"
+
+
+def _roofline_table() -> str:
+    """Section 10's table, from the roofline's result file (written by ``scripts/roofline.py``)."""
+    path = RESULTS / "roofline.json"
+    if not path.is_file():
+        return "No roofline measured yet: `python scripts/roofline.py --results docs/results/roofline.json`."
+    return roofline.to_markdown(read_results(path))

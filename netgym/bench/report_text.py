@@ -288,3 +288,11 @@ CREEP_TEXT = (
     "loaded nets of 2-10 balls (paused as between throws, then simulated on for 1 s first: a pile the pause let "
     "go at 0.1 m/s may still be collapsing). `python scripts/pile_creep.py`; the README (\"Speed and accuracy\") "
     "has the cause of what is left.")
+
+ROOFLINE_TEXT = (
+    "How far the spring pass is from what the machine can do (`python scripts/roofline.py`, "
+    "`netgym.bench.roofline`): a streaming triad over arrays that fit in the L2 cache (the basket's "
+    "positions, velocities, forces and springs do) and over arrays larger than the last-level cache, "
+    "independent fused multiply-adds and independent square roots and divisions measure the roofs; the "
+    "pass's bytes, flops and its one square root and division per spring give its floor on each, and the "
+    "highest of them is the floor. The count of packed instructions says whether the compiler vectorised it.")

@@ -34,7 +34,7 @@ SPRING_FLOPS = 32
 SPRING_SQRT_DIV = 1      # one square root and one division per spring
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _triad(a, b, c, scale):
     for k in range(a.shape[0]):
         a[k] = b[k] + scale * c[k]
@@ -60,7 +60,7 @@ def _fma_chains(x, repeats):
     return total
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _sqrt_div(x, out):
     """One square root and one division per element, all independent."""
     for k in range(x.shape[0]):
@@ -147,3 +147,26 @@ def roofline(scene: str = "basket", quick: bool = False) -> dict[str, float]:
             **{f"floor_ns_{name}": value for name, value in floors.items()},
             "floor_ns": max(floors.values()), "measured_ns_per_spring": 1e9 * seconds / n_springs,
             "spring_pass_packed_scalar_instructions": packed_instructions(forces.spring_forces, *arguments)}
+
+
+def to_markdown(record: dict) -> str:
+    """The roofline table of a result file's record (:func:`netgym.bench.results.read_results`
+    of what ``scripts/roofline.py`` wrote), with its source."""
+    f = record["figures"]
+    packed, scalar = f["spring_pass_packed_scalar_instructions"]
+    rows = [("L2-resident triad bandwidth", f"{f['l2_bandwidth_gb_s']:.1f} GB/s",
+             f"{f['bytes_per_spring']} bytes a spring", f"{f['floor_ns_memory (L2)']:.2f} ns"),
+            ("DRAM-sized triad bandwidth", f"{f['dram_bandwidth_gb_s']:.1f} GB/s", "(the net's arrays fit in L2)", ""),
+            ("FMA peak (vectorised)", f"{f['fma_peak_gflop_s']:.1f} GFLOP/s", f"{f['flops_per_spring']} flops a spring",
+             f"{f['floor_ns_arithmetic']:.2f} ns"),
+            ("square root + division (vectorised)", f"{f['sqrt_div_per_ns']:.2f} per ns", "one of each a spring",
+             f"{f['floor_ns_square root and division']:.2f} ns")]
+    lines = ["| roof | this machine | the spring pass needs | floor per spring |", "|---|---:|---|---:|"]
+    lines += [f"| {a} | {b} | {c} | {d} |" for a, b, c, d in rows]
+    lines += ["", f"On the {f['scene']} net ({f['springs']} springs, one thread) the pass takes "
+              f"**{f['measured_ns_per_spring']:.2f} ns per spring**, {f['measured_ns_per_spring'] / f['floor_ns']:.1f}x "
+              f"its floor of {f['floor_ns']:.2f} ns (the highest roof); its machine code has {packed} packed and "
+              f"{scalar} scalar double-precision arithmetic instructions.", "",
+              f"Source: `docs/results/roofline.json`, written by `{record['command']}` ({record['written']}, "
+              f"{record['machine']})."]
+    return "\n".join(lines)
