@@ -22,9 +22,11 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import ctypes
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -32,6 +34,7 @@ import time
 from pathlib import Path
 
 INSIDE = "--inside-namespace"
+PR_SET_PDEATHSIG = 1
 WORKER_NAME = "worker"
 """The ``--node-name`` of the second node: how its raylet is told apart from the head's."""
 
@@ -58,6 +61,11 @@ def ray_cli() -> str:
     if found is None:
         raise FileNotFoundError('the ray command is missing: pip install -e ".[rllib]"')
     return found
+
+
+def die_with_parent() -> None:
+    """In a child before it runs its program: be killed when this process dies (Linux prctl)."""
+    ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
 def check_tools() -> None:
@@ -146,8 +154,10 @@ def main() -> None:
         parser.error(str(error))
     # -n: network namespace (loopback only); -p -f --mount-proc: process ids of its own, so that
     # every process left in it ends when its first process (this script, again) exits.
+    # --kill-child, and unshare itself killed with this process: nothing outlives a killed run.
     sys.exit(subprocess.run(["unshare", "-n", "-p", "-f", "--mount-proc", "--kill-child",
-                             sys.executable, *sys.argv[:1], INSIDE, *sys.argv[1:]]).returncode)
+                             sys.executable, *sys.argv[:1], INSIDE, *sys.argv[1:]],
+                            preexec_fn=die_with_parent).returncode)
 
 
 if __name__ == "__main__":
