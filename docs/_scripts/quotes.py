@@ -136,6 +136,23 @@ def variants_summary() -> str:
         "Each reset settles a new net, hence its lower throughput."])
 
 
+def rllib_throughput() -> str:
+    """Training env steps/s on 2 cores: SB3 with ``SubprocVecEnv``, RLlib on one and on two Ray
+    nodes of one machine."""
+    record = read_results(RESULTS / "rllib.json")
+    figures = record["figures"]
+    labels = {"sb3_subproc_2_envs": "SB3 PPO, 2 `SubprocVecEnv` envs",
+              "rllib_2_env_runners_1_node": "RLlib PPO, 2 env runners, one Ray node",
+              "rllib_2_env_runners_2_nodes_one_machine": "RLlib PPO, 2 env runners, two Ray nodes on one machine"}
+    lines = ["| training on 2 cores | env steps/s, each run | median |", "|---|---:|---:|"]
+    for key, label in labels.items():
+        runs = ", ".join(f"{run['env_steps_per_s']:.1f}" for run in figures["runs"][key])
+        lines.append(f"| {label} | {runs} | {figures['median_env_steps_per_s'][key]:.1f} |")
+    lines.append(f"\nSource: `docs/results/rllib.json`, written by `{record['command']}` ({record['written']}, "
+                 "beside other work on the machine).")
+    return "\n".join(lines)
+
+
 def _episode_row(rows: list[dict], scene: str, policy: str, balls: int) -> dict:
     matches = [r for r in rows if (r["scene"], r["policy"], r["balls"]) == (scene, policy, balls)]
     if len(matches) != 1:
@@ -183,12 +200,15 @@ def at_a_glance() -> str:
         p50, p99, peak = row["step_ms"]
         lines.append(f"| [{label}]({link}) | {row['throws_per_s']:.1f} | {p50:.1f} / {p99:.1f} / {peak:.1f} |")
     low, high = _training_rate()
-    lines.append(f"| [PPO training, SB3, 8 envs in `SubprocVecEnv`](docs/AGENTS.md#learning-curve) | "
-                 f"{low:.0f}-{high:.0f} env steps/s | |")
+    rllib = read_results(RESULTS / "rllib.json")["figures"]["median_env_steps_per_s"]["rllib_2_env_runners_1_node"]
+    lines.append(f"| [PPO training on 2 cores: SB3, 8 envs in `SubprocVecEnv`](docs/AGENTS.md#learning-curve) / "
+                 f"[RLlib, 2 env runners](docs/AGENTS.md#scaling-out-ray-rllib) | "
+                 f"{low:.0f}-{high:.0f} / {rllib:.0f} env steps/s | |")
     lines.append(f"| [outcomes of the default (IMEX Euler, 2 ms) against RK4 at 0.1 ms, 1000 throws]"
                  f"(docs/BENCHMARKS.md#2-outcome-accuracy) | {_report_agreement('imex_euler', '2')} agree | |")
     lines.append(f"\nOne process, one numba thread. Sources: `docs/results/episodes.json` (`{record['command']}`), "
                  "`docs/figures/ppo_curve.csv` (`python scripts/train_ppo.py --minutes 6 --seeds 0 1 2`), "
+                 "`docs/results/rllib.json` (`python scripts/bench_rllib.py`), "
                  "`docs/BENCHMARKS.md` (`python scripts/report.py`).")
     return "\n".join(lines)
 
@@ -199,6 +219,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "capture-rates": capture_rates,
     "variants": variants,
     "at-a-glance": at_a_glance,
+    "rllib-throughput": rllib_throughput,
     "roofline": lambda: roofline.to_markdown(read_results(RESULTS / "roofline.json")),
     "variants-summary": variants_summary,
     "learning-curve": lambda: learning_curve("ppo_curve"),
