@@ -33,6 +33,14 @@ TRAINING_CURVE = ROOT / "docs" / "figures" / "ppo_curve.csv"
 SHIPPED_PPO = "PPO ppo_netcatch.zip"
 
 
+def _only_row(rows: list[dict], source: str, what: str, match: Callable[[dict], bool]) -> dict:
+    """The one row of ``source``'s ``rows`` that ``match``es; a clear error naming ``what`` otherwise."""
+    found = [row for row in rows if match(row)]
+    if len(found) != 1:
+        raise ValueError(f"docs/results/{source} has {len(found)} rows for {what}")
+    return found[0]
+
+
 def _rate(row: dict) -> str:
     return f"{100 * row['captured'] / row['throws']:.1f}%"
 
@@ -112,10 +120,9 @@ def variants_summary() -> str:
     rows = read_results(RESULTS / "variants.json")["figures"]["rows"]
 
     def rate(variant: str, agent: str) -> float:
-        match = [r for r in rows if r["variant"] == variant and r["agent"].startswith(agent)]
-        if len(match) != 1:
-            raise ValueError(f"docs/results/variants.json has {len(match)} rows for {variant}, {agent}")
-        return 100 * match[0]["captured"] / match[0]["throws"]
+        row = _only_row(rows, "variants.json", f"{variant}, {agent}",
+                        lambda r: r["variant"] == variant and r["agent"].startswith(agent))
+        return 100 * row["captured"] / row["throws"]
 
     windy, noisy = "NetCatchWindy-v0", "NetCatchNoisy-v0"
     blind, informed = rate(windy, "ballistic oracle"), rate(windy, "informed oracle")
@@ -154,10 +161,8 @@ def rllib_throughput() -> str:
 
 
 def _episode_row(rows: list[dict], scene: str, policy: str, balls: int) -> dict:
-    matches = [r for r in rows if (r["scene"], r["policy"], r["balls"]) == (scene, policy, balls)]
-    if len(matches) != 1:
-        raise ValueError(f"docs/results/episodes.json has {len(matches)} rows for {scene}, {policy}, {balls} balls")
-    return matches[0]
+    return _only_row(rows, "episodes.json", f"{scene}, {policy}, {balls} balls",
+                     lambda r: (r["scene"], r["policy"], r["balls"]) == (scene, policy, balls))
 
 
 def _training_rate() -> tuple[float, float]:
