@@ -17,7 +17,7 @@ Usage::
 
     python scripts/bench_env.py                 # 1000 throws per scene, both cores
     python scripts/bench_env.py --throws 300 --case "goal, held" --reference-dt 0.0001   # ~10 min
-    python scripts/bench_env.py --quick         # a few throws, for CI smoke tests
+    python scripts/bench_env.py --quick         # 2 throws a case and 2 environments, for CI smoke tests
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ def main() -> None:
                         help=f"run only this case (repeatable; one of {', '.join(repr(c) for c in CASES)})")
     parser.add_argument("--reference-dt", type=float, help="also simulate every throw fully at this step (s)")
     args = parser.parse_args()
-    count = 6 if args.quick else args.throws
+    count = 2 if args.quick else args.throws
     reference = "" if args.reference_dt is None else \
         f" fast agrees with full at {args.reference_dt:g} s | full agrees with it |"
     print("| scene | throws | outcome agreement | captured | fast throws/s | full throws/s | speed-up | "
@@ -55,8 +55,9 @@ def main() -> None:
               f"{s['fast_touching_throws_per_s']:.1f} |"
               + (f" {100 * s['fast_vs_reference']:.1f}% | {100 * s['full_vs_reference']:.1f}% |" if reference else ""))
     if args.case is None:
-        print("\n| 8 environments (basket, noisy oracle actions) | env steps/s |\n|---|---:|")
-        for kind, rate in env_throughput(8, 2 if args.quick else 30).items():
+        envs = 2 if args.quick else 8
+        print(f"\n| {envs} environments (basket, noisy oracle actions) | env steps/s |\n|---|---:|")
+        for kind, rate in env_throughput(envs, 2 if args.quick else 30).items():
             print(f"| {SETUPS[kind]} | {rate:.1f} |")
     print("\n(per-process figures; agreement and full-simulation runs use "
           f"{1 if args.quick else args.workers} process(es))")

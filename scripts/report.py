@@ -38,7 +38,7 @@ def main() -> None:
     parser.add_argument("--throws", type=int, default=1000, help="throws for the outcome-accuracy section")
     parser.add_argument("--docs", type=Path, default=Path("docs"))
     args = parser.parse_args()
-    report = measure(args.quick, 12 if args.quick else args.throws,
+    report = measure(args.quick, 4 if args.quick else args.throws,
                      args.docs / "figures" / "episode_reference.json")
     text = to_markdown(report)
     if args.quick:

@@ -2,7 +2,8 @@
 
 When the suite runs on several processes (pytest-xdist, the default), the controller first
 compiles the kernels an episode of each scene uses (or loads them from numba's cache), so that
-the workers load them from the cache instead of each compiling them at once.
+the workers load them from the cache instead of each compiling them at once. Tests marked
+``slow`` are handed out first, so that no long test starts last while the other workers idle.
 """
 
 from __future__ import annotations
@@ -31,6 +32,11 @@ def pytest_configure(config: pytest.Config) -> None:
 
     for env_id in WARM_UP_ENVIRONMENTS:
         compile_kernels(env_id)
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Run the tests marked ``slow`` first (each group keeps its order)."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
 @pytest.fixture

@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import multiprocessing
 import time
+from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
 from netgym.bench.throws import Throw
 from netgym.physics.simulator import Simulator
+from netgym.physics.throws import ThrowResult
 
 CASES = {  # label: scene and overrides of the fast-path comparisons the benchmarks print
     "basket": ("basket", None),
@@ -36,8 +38,8 @@ def _reference_overrides(overrides: dict | None, reference_dt: float) -> dict:
     return {**(overrides or {}), "simulation.dt": reference_dt}
 
 
-def _simulate(args: tuple[str, dict | None, list[Throw], float | None]) -> list[Outcome]:
-    scene, overrides, throws, reference_dt = args
+def _simulate(args: tuple[str, dict | None, float | None, list[Throw]]) -> list[Outcome]:
+    scene, overrides, reference_dt, throws = args
     sim = Simulator(scene, overrides)
     fine = None if reference_dt is None else Simulator(scene, _reference_overrides(overrides, reference_dt))
     out = []
@@ -58,6 +60,20 @@ def _simulate(args: tuple[str, dict | None, list[Throw], float | None]) -> list[
     return out
 
 
+def _interleaved(work: Callable[[tuple], list], shared: tuple, throws: list[Throw], workers: int) -> list:
+    """``work((*shared, throws))`` on ``workers`` processes (forked: compile and settle before),
+    each taking every ``workers``-th throw; the results in the throws' order."""
+    if workers == 1:
+        return work((*shared, throws))
+    chunks = [(*shared, throws[i::workers]) for i in range(workers)]
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        parts = list(pool.map(work, chunks))
+    ordered = [None] * len(throws)
+    for i, part in enumerate(parts):
+        ordered[i::workers] = part
+    return ordered
+
+
 def compare(scene: str, throws: list[Throw], workers: int = 1, overrides: dict | None = None,
             reference_dt: float | None = None) -> list[Outcome]:
     """Simulate every throw fast and fully, on ``workers`` processes (forked after compiling),
@@ -66,12 +82,25 @@ def compare(scene: str, throws: list[Throw], workers: int = 1, overrides: dict |
     Simulator(scene, overrides).throw(*throws[0])  # compile and settle before forking
     if reference_dt is not None:
         Simulator(scene, _reference_overrides(overrides, reference_dt))  # its net settles once, before forking
-    if workers == 1:
-        return _simulate((scene, overrides, throws, reference_dt))
-    chunks = [(scene, overrides, throws[i::workers], reference_dt) for i in range(workers)]
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
-        parts = list(pool.map(_simulate, chunks))
-    return [o for part in parts for o in part]
+    return _interleaved(_simulate, (scene, overrides, reference_dt), throws, workers)
+
+
+def _throw_each(args: tuple[str, dict | None, bool, list[Throw]]) -> list[ThrowResult]:
+    scene, overrides, fast, throws = args
+    sim = Simulator(scene, overrides)
+    results = []
+    for position, velocity in throws:
+        sim.reset()
+        results.append(sim.throw(position, velocity, fast))
+    return results
+
+
+def throw_each(scene: str, throws: list[Throw], workers: int = 1, overrides: dict | None = None,
+               fast: bool = True) -> list[ThrowResult]:
+    """Every throw from the settled empty net, by the fast path or (``fast=False``) simulated
+    fully to the time limit, on ``workers`` processes."""
+    Simulator(scene, overrides).throw(*throws[0], fast)  # compile and settle before forking
+    return _interleaved(_throw_each, (scene, overrides, fast), throws, workers)
 
 
 def summarise(outcomes: list[Outcome]) -> dict[str, float]:

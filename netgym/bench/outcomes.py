@@ -5,14 +5,15 @@ from __future__ import annotations
 
 import time
 
-from netgym.bench.settings import SWEEPS
+from netgym.bench.settings import outcome_sweeps
 from netgym.bench.throws import sample_throws
 from netgym.errors import SimulationDivergedError
 from netgym.physics.simulator import Simulator
 
 
-def outcome_accuracy(count: int) -> list[dict]:
-    """Per (integrator, dt): agreement of capture outcomes with the reference, and throws/s."""
+def outcome_accuracy(count: int, quick: bool = False) -> list[dict]:
+    """Per (integrator, dt) of :func:`~netgym.bench.settings.outcome_sweeps`: agreement of
+    capture outcomes with the reference, and throws/s."""
     throws = sample_throws("basket", count, seed=99)
 
     def outcomes(integrator: str, dt: float) -> tuple[list[bool], float]:
@@ -31,7 +32,7 @@ def outcome_accuracy(count: int) -> list[dict]:
 
     reference, _ = outcomes("rk4", 1e-4)
     rows = []
-    for integrator, dts in SWEEPS.items():
+    for integrator, dts in outcome_sweeps(quick).items():
         for dt in dts:
             got, rate = outcomes(integrator, dt)
             agree = sum(g == r for g, r in zip(got, reference)) / count

@@ -94,11 +94,11 @@ def measure(quick: bool, count: int, reference: Path | None = None) -> Report:
     reference_setting = QUICK_REFERENCE if quick else REFERENCE
     sections = {
         "work-precision": lambda: work_precision(quick, reference_setting),
-        "outcome accuracy": lambda: outcome_accuracy(count),
+        "outcome accuracy": lambda: outcome_accuracy(count, quick),
         "stability limits": lambda: stability_limits(quick),
         "peers": lambda: peers(quick, reference_setting),
         "simulator throughput": lambda: sim_throughput.to_markdown(sim_throughput.run(quick)),
-        "fast path": lambda: {label: summarise(compare(scene, sample_throws(scene, 6 if quick else 300), 1, overrides))
+        "fast path": lambda: {label: summarise(compare(scene, sample_throws(scene, 2 if quick else 300), 1, overrides))
                               for label, (scene, overrides) in CASES.items()},
         "vector environments": lambda: env_throughput(8, 2 if quick else 30),
         "episodes": lambda: episodes.to_markdown(episodes.run_rows(2 if quick else 60, [None])),

@@ -14,3 +14,13 @@ SWEEPS = {
 }
 DEFAULT = ("imex_euler", 2e-3)
 PEER_SETTING = ("symplectic_euler", 5e-4)  # the peers run the same explicit method at the same dt
+
+
+def outcome_sweeps(quick: bool) -> dict[str, list[float]]:
+    """The dt of each integrator the outcome-accuracy section runs: :data:`SWEEPS`, or with
+    ``quick`` one each, :data:`DEFAULT`'s or :data:`PEER_SETTING`'s where it is its integrator's,
+    else its largest."""
+    if not quick:
+        return SWEEPS
+    chosen = dict([PEER_SETTING, DEFAULT])
+    return {integrator: [chosen.get(integrator, dts[-1])] for integrator, dts in SWEEPS.items()}
