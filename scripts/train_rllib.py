@@ -12,8 +12,10 @@ the cluster has CPUs to spare (one learner CPU stays on the head). Recipes for a
 
 RLlib's fault tolerance is on: an env runner lost with its node (or its process) is restarted
 as soon as the cluster has a CPU for it, and training goes on with the healthy ones meanwhile.
-The script prints, each iteration, its seconds and the healthy env runners, and where the env
-runners run; ``--summary`` writes the same as JSON. The checkpoint is a policy that
+The script prints, each iteration, its seconds, the capture rate of the episodes its env runners
+finished (the training return is the shaped reward of ``agents/hyperparams/ppo.yml``, which pays
+near misses too), the healthy env runners, and where the env runners run; ``--summary`` writes
+the same as JSON. The checkpoint is a policy that
 ``scripts/evaluate.py`` evaluates like a saved SB3 model.
 
 Usage::
@@ -48,6 +50,29 @@ def make_env(env_config: dict) -> NetCatchEnv:
     return NetCatchEnv(**env_config)
 
 
+def capture_counter() -> type:
+    """An RLlib callback class that counts, over the episodes the env runners finish, the throws
+    and the captures (``info["captured"]``), as sums per training iteration (``throws`` and
+    ``captures`` under the result's ``env_runners``); an episode cut into chunks counts once."""
+    from ray.rllib.callbacks.callbacks import RLlibCallback
+
+    class CaptureCounter(RLlibCallback):
+        def on_episode_end(self, *, episode, prev_episode_chunks=None, metrics_logger=None, **kwargs) -> None:
+            steps = [info for chunk in [*(prev_episode_chunks or []), episode] for info in chunk.get_infos()[1:]]
+            metrics_logger.log_value("throws", len(steps), reduce="sum", clear_on_reduce=True)
+            metrics_logger.log_value("captures", sum(bool(info.get("captured")) for info in steps), reduce="sum",
+                                     clear_on_reduce=True)
+
+    return CaptureCounter
+
+
+def capture_rate(runners: dict) -> float | None:
+    """The capture rate of an iteration's finished episodes (its result's ``env_runners``), or
+    None when none finished."""
+    throws = runners.get("throws") or 0
+    return runners.get("captures", 0) / throws if throws else None
+
+
 def build(env_runners: int, batch: int, minibatch: int, epochs: int):
     """The PPO algorithm on NetCatch-v0, with the training environment's arguments and the
     settings RLlib shares with SB3 (learning rate, gamma, lambda, entropy coefficient) from
@@ -64,6 +89,7 @@ def build(env_runners: int, batch: int, minibatch: int, epochs: int):
         .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=PPO_PARAMS["policy_kwargs"]["net_arch"]))
         .training(**{**rllib_training(), "num_epochs": epochs}, train_batch_size_per_learner=batch,
                   minibatch_size=minibatch, clip_param=PPO_PARAMS["clip_range"], **SB3_DEFAULTS)
+        .callbacks(capture_counter())
         .fault_tolerance(restart_failed_env_runners=True, delay_between_env_runner_restarts_s=RESTART_DELAY_S,
                          env_runner_health_probe_timeout_s=10.0)
     )
@@ -119,9 +145,11 @@ def main() -> None:
             iterations.append({"end": time.time(), "seconds": time.time() - start,
                                "env_steps": runners.get("num_env_steps_sampled_lifetime"),
                                "episode_return_mean": runners.get("episode_return_mean"),
+                               "capture_rate": capture_rate(runners),
                                "healthy": algo.env_runner_group.num_healthy_remote_workers()})
             print(f"iteration {i + 1}: {iterations[-1]['seconds']:.1f} s, env steps {iterations[-1]['env_steps']}, "
                   f"mean episode return {iterations[-1]['episode_return_mean']}, "
+                  f"capture rate {iterations[-1]['capture_rate']}, "
                   f"env runners healthy {iterations[-1]['healthy']}", flush=True)
         checkpoint = algo.save_to_path(str(args.out.resolve()))
         print(f"checkpoint: {checkpoint}")

@@ -7,11 +7,15 @@ skipped, except with ``NETGYM_REQUIRE_RAY=1`` (CI's rllib venv, ``.ci/run``), wh
 
 No learning bar: measured runs of :func:`test_two_node_cluster_trains_ppo_that_evaluates` (PPO,
 24 iterations of 512 env steps, one env runner on each node; the restored checkpoint's
-deterministic policy on 100 episodes, seeds 10000-10099, 300 throws) caught 88/300, 300/300, 0/300
-and 42/300 (random actions: 113/3000): at this budget RLlib's training is not reliable enough for a
-bar that cannot fail by chance. The test checks the distributed path (two nodes, a runner on
-each, healthy throughout, a checkpoint that restores and evaluates in a fresh process) and
-prints the capture rate.
+deterministic policy on 100 episodes, seeds 10000-10099, 300 throws) caught 88/300, 300/300, 0/300,
+42/300, 67/300, 0/300, 237/300, 0/300 and 4/300 (random actions: 113/3000). The capture rate the
+env runners count in training (scripts/train_rllib.py) shows why: of the last three runs one rose
+from 0.03 to 0.59 over the 24 iterations, one stayed at 0.01-0.04, and one fell to 0.00 by
+iteration 7 and stayed there while its shaped return rose (near misses pay up to 0.5: the policy settled on the fastest, flattest
+throw, a corner of the action box). At this budget training is not reliable enough for a bar that
+cannot fail by chance. The test checks the distributed path (two nodes, a runner on each, healthy
+throughout, a capture rate counted in every iteration, a checkpoint that restores and evaluates
+in a fresh process) and prints the capture rates.
 """
 
 from __future__ import annotations
@@ -34,6 +38,8 @@ ROOT = Path(__file__).resolve().parents[1]
 REQUIRE_RAY = "NETGYM_REQUIRE_RAY"
 ITERATIONS = 24
 BATCH = 512
+
+
 def _train_rllib_script():
     """scripts/train_rllib.py as a module (it imports ray only when it trains)."""
     spec = importlib.util.spec_from_file_location("train_rllib", ROOT / "scripts" / "train_rllib.py")
@@ -108,8 +114,11 @@ def test_two_node_cluster_trains_ppo_that_evaluates(tmp_path: Path) -> None:
     assert len(set(summary["nodes"])) == 2
     assert sorted(summary["env_runner_nodes"]) == sorted(summary["nodes"])  # one runner on each node
     assert [it["healthy"] for it in summary["iterations"]] == [2] * ITERATIONS
+    rates = [it["capture_rate"] for it in summary["iterations"]]
+    assert all(0.0 <= rate <= 1.0 for rate in rates)  # every iteration finished episodes and counted their captures
     captured, throws, low = _evaluate(summary["checkpoint"])
-    print(f"two-node cluster, {ITERATIONS} iterations: {captured}/{throws} captured (95% CI low {low:.3f})")
+    print(f"two-node cluster, {ITERATIONS} iterations: capture rate in training "
+          f"{', '.join(f'{rate:.2f}' for rate in rates)}; evaluated {captured}/{throws} captured (95% CI low {low:.3f})")
     assert throws == 300 and 0 <= captured <= throws
 
 
