@@ -41,7 +41,7 @@ def implicit_euler(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
 
 
 def imex_euler(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
-    integrators.step_imex_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h, s.work, s.coef)
+    integrators.step_imex_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h, s)
 
 
 METHODS = {"explicit_euler": euler(False), "symplectic_euler": euler(True), "rk4": rk4,

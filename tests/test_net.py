@@ -173,15 +173,16 @@ def test_the_kernels_wavefront_order_of_springs_gives_bitwise_the_same_steps(int
     results = []
     for springs, params in ((model.springs, model.spring_params), (ordered.springs, ordered.spring_params)):
         x, v = x0.copy(), v0.copy()
-        work, coef = Scratch.sized(len(x), len(springs))
+        scratch = Scratch.sized(len(x), len(springs))
         for _ in range(5):
             if integrator == "imex_euler":
-                step_imex_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 0.01, work, coef)
+                step_imex_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 0.01, scratch)
             elif integrator == "symplectic_euler":
-                step_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 5e-4, work, True)
+                step_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 5e-4, scratch.work,
+                           True)
             else:
                 step_implicit_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 0.01,
                                     Settings.make(Integrator.IMPLICIT_EULER, 0.01, 0.25, 1e-8, 200, 1e3),
-                                    Scratch(work, coef))
+                                    scratch)
         results.append((x, v))
     assert np.array_equal(results[0][0], results[1][0]) and np.array_equal(results[0][1], results[1][1])

@@ -173,12 +173,38 @@ def test_imex_dampers_only_remove_kinetic_energy_and_keep_momentum() -> None:
         params = np.column_stack([np.zeros(len(springs)), np.zeros(len(springs)),  # no elastic force
                                   rng.uniform(1.0, 500.0, len(springs))])
         dt = 10.0 ** rng.uniform(-4, -1)
-        work, coef = Scratch.sized(len(x), len(springs))
         kinetic = 0.5 * np.sum(v * v / inv_mass[:, None])
         momentum = np.sum(v / inv_mass[:, None], axis=0)
-        step_imex_euler(x, v, inv_mass, 0.0, 0.0, springs, params, dt, work, coef)
+        step_imex_euler(x, v, inv_mass, 0.0, 0.0, springs, params, dt, Scratch.sized(len(x), len(springs)))
         assert 0.5 * np.sum(v * v / inv_mass[:, None]) < kinetic
         assert np.allclose(np.sum(v / inv_mass[:, None], axis=0), momentum, atol=1e-10)
+
+
+def test_imex_shares_are_computed_again_for_another_step_and_after_implicit_euler() -> None:
+    """IMEX Euler keeps its damper shares (which depend on dt alone) between steps of one size: a
+    scratch that last stepped at another dt, or that implicit Euler used since, steps bitwise as
+    a fresh one does."""
+    from netgym.physics.integrators import step_imex_euler, step_implicit_euler
+
+    rng = np.random.default_rng(5)
+    x, springs = _random_spring_graph(rng)
+    v = rng.normal(0.0, 1.0, x.shape)
+    inv_mass = rng.uniform(0.5, 5.0, len(x))
+    params = np.column_stack([np.ones(len(springs)), rng.uniform(10.0, 100.0, len(springs)),
+                              rng.uniform(1.0, 50.0, len(springs))])
+
+    def imex(scratch: Scratch, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        xs, vs = x.copy(), v.copy()
+        step_imex_euler(xs, vs, inv_mass, -9.81, 0.0, springs, params, dt, scratch)
+        return xs, vs
+
+    fresh = imex(Scratch.sized(len(x), len(springs)), 2e-3)
+    used = Scratch.sized(len(x), len(springs))
+    imex(used, 5e-3)
+    assert all(np.array_equal(a, b) for a, b in zip(imex(used, 2e-3), fresh))
+    step_implicit_euler(x.copy(), v.copy(), inv_mass, -9.81, 0.0, springs, params, 2e-3,
+                        Settings.make(Integrator.IMPLICIT_EULER, 2e-3, 0.25, 1e-8, 200, 1e3), used)
+    assert all(np.array_equal(a, b) for a, b in zip(imex(used, 2e-3), fresh))
 
 
 def test_imex_damper_of_one_spring_is_two_backward_euler_half_steps() -> None:
@@ -189,8 +215,7 @@ def test_imex_damper_of_one_spring_is_two_backward_euler_half_steps() -> None:
     inv_mass, kd, dt = np.array([2.0, 0.5]), 40.0, 0.01
     axis = x[1] - x[0]
     before = np.dot(v[1] - v[0], axis)
-    work, coef = Scratch.sized(2, 1)
-    step_imex_euler(x, v, inv_mass, 0.0, 0.0, np.array([[0, 1]]), np.array([[1.0, 0.0, kd]]), dt, work, coef)
+    step_imex_euler(x, v, inv_mass, 0.0, 0.0, np.array([[0, 1]]), np.array([[1.0, 0.0, kd]]), dt, Scratch.sized(2, 1))
     assert np.dot(v[1] - v[0], axis) == pytest.approx(before / (1.0 + 0.5 * dt * kd * inv_mass.sum()) ** 2, rel=1e-12)
 
 
@@ -225,8 +250,7 @@ def _spectral_radius_of_the_imex_step(x, inv_mass, springs, params, dt) -> float
         xs, vs = x.copy(), np.zeros_like(x)
         xs[1] += state[:3]
         vs[1] = state[3:]
-        work, coef = Scratch.sized(2, 1)
-        step_imex_euler(xs, vs, inv_mass, 0.0, 0.0, springs, params, dt, work, coef)
+        step_imex_euler(xs, vs, inv_mass, 0.0, 0.0, springs, params, dt, Scratch.sized(2, 1))
         return np.concatenate([xs[1] - x[1], vs[1]])
 
     eps = 1e-7

@@ -45,8 +45,8 @@ class Workspace:
 
     def scratch(self, n_bodies: int, n_springs: int) -> Scratch:
         """Integrator scratch for one state of this size."""
-        work, coef = Scratch.shapes(n_bodies, n_springs)
-        return Scratch(self.array("work", work), self.array("coef", coef))
+        work, coef, coef_dt = Scratch.shapes(n_bodies, n_springs)
+        return Scratch(self.array("work", work), self.array("coef", coef), self.array("coef_dt", coef_dt))
 
 
 class RestTest:

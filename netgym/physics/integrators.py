@@ -17,7 +17,8 @@ imex_euler            1      symplectic Euler on elastic forces and gravity, dam
 ====================  =====  ===============================================================
 
 Every kernel takes a ``work`` array of shape (WORK_SLOTS, n, 3) and a ``coef`` array of
-shape (n_springs, 5) as scratch space (together a :class:`Scratch`), so a step allocates nothing.
+shape (n_springs, 5) as scratch space (with ``coef_dt``, together a :class:`Scratch`), so a step
+allocates nothing.
 """
 
 from __future__ import annotations
@@ -38,21 +39,24 @@ START_SLOT = 7   # the one slot the integrators leave alone: positions at the st
 
 
 class Scratch(NamedTuple):
-    """Scratch space of the integrators: ``work`` (WORK_SLOTS, n_bodies, 3), ``coef`` (n_springs, 5)."""
+    """Scratch space of the integrators: ``work`` (WORK_SLOTS, n_bodies, 3), ``coef`` (n_springs, 5)
+    and ``coef_dt`` (1,): the step for which ``coef``'s last two columns hold IMEX Euler's damper
+    shares (they depend on the step alone, so :func:`step_imex_euler` computes them once per step
+    size), 0 when they hold anything else. A scratch serves one net: its springs and masses."""
 
     work: np.ndarray
     coef: np.ndarray
+    coef_dt: np.ndarray
 
     @staticmethod
-    def shapes(n_bodies: int, n_springs: int) -> tuple[tuple[int, int, int], tuple[int, int]]:
-        """The shapes of ``work`` and ``coef`` for bodies and springs of this size."""
-        return (WORK_SLOTS, n_bodies, 3), (max(n_springs, 1), 5)
+    def shapes(n_bodies: int, n_springs: int) -> tuple[tuple[int, int, int], tuple[int, int], tuple[int]]:
+        """The shapes of ``work``, ``coef`` and ``coef_dt`` for bodies and springs of this size."""
+        return (WORK_SLOTS, n_bodies, 3), (max(n_springs, 1), 5), (1,)
 
     @classmethod
     def sized(cls, n_bodies: int, n_springs: int) -> "Scratch":
         """Zeroed scratch for bodies and springs of this size."""
-        work, coef = cls.shapes(n_bodies, n_springs)
-        return cls(np.zeros(work), np.zeros(coef))
+        return cls(*(np.zeros(shape) for shape in cls.shapes(n_bodies, n_springs)))
 
 
 @kernel
@@ -97,18 +101,19 @@ def sweep_dampers(v, springs, coef, forward):
 
 
 @kernel
-def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef):
+def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, scratch):
     """Implicit-explicit Euler: v += dt (elastic + gravity) / m explicitly, then the dampers and
-    air drag implicitly, then x += dt v (symplectic order).
+    air drag implicitly, then x += dt v (symplectic order). ``scratch``: a :class:`Scratch`.
 
     Air drag is solved exactly (``v /= 1 + dt drag``). The dampers are solved by a symmetric
     Gauss-Seidel sweep (the springs forwards, then backwards, each pass over dt/2) in which each
     spring's damper alone is integrated with backward Euler along its axis at the start of the
     step: its closing speed c becomes ``c / (1 + h kd (w_i + w_j))``. Every such update removes
     kinetic energy and the symmetric sweep is a symmetric contraction, so the dampers no longer
-    limit the stable dt (the elastic frequencies do).
+    limit the stable dt (the elastic frequencies do). The shares of that update depend on dt
+    alone: they are computed again only when dt differs from the step before's.
     """
-    a = work[0]
+    a, coef = scratch.work[0], scratch.coef
     a[:] = 0.0
     for s in range(springs.shape[0]):
         i = springs[s, 0]
@@ -116,9 +121,14 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, co
         length, ux, uy, uz = spring_axis(x, i, j)
         mag = -params[s, 1] * (length - params[s, 0])
         add_pair_force(a, i, j, mag * ux, mag * uy, mag * uz)
-        share = damper_share(dt, params[s, 2], inv_mass[i], inv_mass[j])
         coef[s, 0], coef[s, 1], coef[s, 2] = ux, uy, uz
-        coef[s, 3], coef[s, 4] = share * inv_mass[i], share * inv_mass[j]
+    if scratch.coef_dt[0] != dt:
+        for s in range(springs.shape[0]):
+            i = springs[s, 0]
+            j = springs[s, 1]
+            share = damper_share(dt, params[s, 2], inv_mass[i], inv_mass[j])
+            coef[s, 3], coef[s, 4] = share * inv_mass[i], share * inv_mass[j]
+        scratch.coef_dt[0] = dt
     keep = 1.0 / (1.0 + dt * drag)
     for k in range(x.shape[0]):
         w = inv_mass[k]
@@ -205,6 +215,7 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, sett
     Returns the number of CG iterations used.
     """
     work, coef = scratch.work, scratch.coef
+    scratch.coef_dt[0] = 0.0  # coef is about to hold this system's terms, not IMEX Euler's shares
     mass_scale = 1.0 + dt * drag
     _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef)
     iterations = _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch)
@@ -313,7 +324,7 @@ def _smooth_step(settings, x, v, inv_mass, model, dt, scratch, stats):
     elif integrator == Integrator.IMEX_EULER:
         def step(settings, x, v, inv_mass, model, dt, scratch, stats):
             step_imex_euler(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt,
-                            scratch.work, scratch.coef)
+                            scratch)
     elif integrator == Integrator.IMPLICIT_EULER:
         def step(settings, x, v, inv_mass, model, dt, scratch, stats):
             stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, model.gravity, model.drag, model.springs,
