@@ -163,7 +163,7 @@ def _slide_entry(p: np.ndarray, v: np.ndarray, lo: np.ndarray, hi: np.ndarray, g
         return None
     speed = math.hypot(v[0], v[1])
     if speed == 0.0:
-        return elapsed if np.all(p >= lo) and np.all(p <= hi) else None
+        return elapsed if (p >= lo).all() and (p <= hi).all() else None
     decel = ground.friction * -ground.gravity
     # at constant speed, the time that covers the stopping distance speed^2 / (2 decel)
     reach = speed / (2.0 * decel) if decel > 0.0 else horizon - elapsed

@@ -399,7 +399,7 @@ class Throw:
         (with bounces) misses it; through air, it lies outside, held by friction."""
         s, m, g = self.sim.state, self.sim.model, self.ground
         p, v = s.x[self.ball.row], s.v[self.ball.row]
-        if not (np.any(p < lo) or np.any(p > hi)):
+        if not ((p < lo).any() or (p > hi).any()):
             return False  # inside it already
         if m.ball_drag == 0.0:
             return flight.entry_time(p, v, lo, hi, g, horizon) is None
@@ -408,7 +408,7 @@ class Throw:
     def _safe_time(self, gap: float) -> float:
         """A time within which the ball cannot travel ``gap``."""
         m, v = self.sim.model, self.sim.state.v[self.ball.row]
-        speed = float(np.linalg.norm(v))
+        speed = math.sqrt(v.dot(v))  # np.linalg.norm's own sum, without its overhead
         if m.ball_drag == 0.0:
             g = abs(m.gravity)
         else:  # bound the acceleration over at most air_piece, with the speed it could gain
