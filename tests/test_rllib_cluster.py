@@ -68,12 +68,15 @@ def _needs_cluster() -> None:
         pytest.skip(message)
 
 
-def _train_on_cluster(tmp_path: Path, iterations: int, *cluster_args: str) -> tuple[dict, str]:
-    """Train on a fresh two-node cluster; the run's summary and the cluster's output."""
+def _train_on_cluster(tmp_path: Path, iterations: int, *cluster_args: str,
+                      train_args: tuple[str, ...] = ()) -> tuple[dict, str]:
+    """Train on a fresh two-node cluster (``train_args``: more arguments of train_rllib.py); the
+    run's summary and the cluster's output."""
     summary = tmp_path / "summary.json"
     command = [sys.executable, "scripts/local_cluster.py", *cluster_args, "--",
                sys.executable, "scripts/train_rllib.py", "--address", "127.0.0.1:6380",
-               "--iterations", str(iterations), "--batch", str(BATCH), "--out", str(tmp_path / "checkpoint"), "--summary", str(summary)]
+               "--iterations", str(iterations), "--batch", str(BATCH), "--out", str(tmp_path / "checkpoint"), "--summary", str(summary),
+               *train_args]
     done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
     temp_dir = re.search(r"temp dir (\S+)\)", done.stdout)
@@ -104,6 +107,16 @@ def _evaluate(checkpoint: str, episodes: int = 100) -> tuple[int, int, float]:
     found = re.search(r"capture rate [\d.]+% \((\d+)/(\d+) throws; 95% CI ([\d.]+)-", done.stdout)
     assert found, done.stdout
     return int(found[1]), int(found[2]), float(found[3]) / 100
+
+
+def test_train_rllib_quick_runs_one_iteration_on_a_cluster(tmp_path: Path) -> None:
+    """The script's smoke mode (one tiny iteration, two env runners), as CI runs it: on the
+    local cluster, whose namespace keeps Ray on loopback."""
+    _needs_cluster()
+    summary, out = _train_on_cluster(tmp_path, ITERATIONS, train_args=("--quick",))
+    assert "iteration 1:" in out and "checkpoint" in out
+    assert [it["healthy"] for it in summary["iterations"]] == [2]  # --quick: one iteration, two env runners
+    assert Path(summary["checkpoint"]).is_dir()
 
 
 def test_two_node_cluster_trains_ppo_that_evaluates(tmp_path: Path) -> None:

@@ -95,15 +95,6 @@ def test_render_throw_writes_a_gif(tmp_path) -> None:
         assert gif.n_frames > 10 and gif.size == (480, 360)
 
 
-def test_train_rllib_quick_runs_one_iteration(tmp_path) -> None:
-    import pytest
-
-    pytest.importorskip("ray.rllib", reason="the rllib extra is not installed")
-    out = _run("scripts/train_rllib.py", "--quick", "--out", str(tmp_path / "rllib"))
-    assert "iteration 1:" in out and "checkpoint" in out
-    assert "env runners healthy 2" in out  # the smoke test samples with two env runner processes
-
-
 @pytest.mark.slow
 def test_report_quick_covers_every_section() -> None:
     out = _run("scripts/report.py", "--quick")
