@@ -13,8 +13,9 @@ the cluster has CPUs to spare (one learner CPU stays on the head). Recipes for a
 RLlib's fault tolerance is on: an env runner lost with its node (or its process) is restarted
 as soon as the cluster has a CPU for it, and training goes on with the healthy ones meanwhile.
 The script prints, each iteration, its seconds, the capture rate of the episodes its env runners
-finished (the training return is the shaped reward of ``agents/hyperparams/ppo.yml``, which pays
-near misses too), the healthy env runners, and where the env runners run; ``--summary`` writes
+finished (by default the training return is the shaped reward of ``agents/hyperparams/ppo.yml``,
+which pays near misses too; ``--reward-mode sparse`` pays captures alone), the healthy env runners,
+and where the env runners run; ``--summary`` writes
 the same as JSON. The checkpoint is a policy that
 ``scripts/evaluate.py`` evaluates like a saved SB3 model.
 
@@ -34,6 +35,7 @@ from pathlib import Path
 
 from agents.hyperparams import ENV_KWARGS, PPO_PARAMS, rllib_training  # from agents/hyperparams/ppo.yml
 from netgym.envs import NetCatchEnv
+from netgym.envs.net_catch import REWARD_MODES
 
 ENV_NAME = "netgym/NetCatch-v0"
 SB3_DEFAULTS = {"use_kl_loss": False, "vf_loss_coeff": 0.5, "grad_clip": 0.5}
@@ -73,10 +75,11 @@ def capture_rate(runners: dict) -> float | None:
     return runners.get("captures", 0) / throws if throws else None
 
 
-def build(env_runners: int, batch: int, minibatch: int, epochs: int):
+def build(env_runners: int, batch: int, minibatch: int, epochs: int, reward_mode: str | None = None):
     """The PPO algorithm on NetCatch-v0, with the training environment's arguments and the
     settings RLlib shares with SB3 (learning rate, gamma, lambda, entropy coefficient) from
-    agents/hyperparams/ppo.yml; ``epochs`` overrides its ``n_epochs``."""
+    agents/hyperparams/ppo.yml; ``epochs`` overrides its ``n_epochs``, ``reward_mode`` (when
+    given) its environment's ``reward_mode``."""
     from ray.rllib.algorithms.ppo import PPOConfig
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
     from ray.tune.registry import register_env
@@ -84,7 +87,7 @@ def build(env_runners: int, batch: int, minibatch: int, epochs: int):
     register_env(ENV_NAME, make_env)
     config = (
         PPOConfig()
-        .environment(ENV_NAME, env_config=dict(ENV_KWARGS))
+        .environment(ENV_NAME, env_config={**ENV_KWARGS, **({"reward_mode": reward_mode} if reward_mode else {})})
         .env_runners(num_env_runners=env_runners, num_envs_per_env_runner=1)
         .rl_module(model_config=DefaultModelConfig(fcnet_hiddens=PPO_PARAMS["policy_kwargs"]["net_arch"]))
         .training(**{**rllib_training(), "num_epochs": epochs}, train_batch_size_per_learner=batch,
@@ -114,6 +117,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="a running Ray cluster to join ('auto': the one this node belongs to); default: a local Ray")
     parser.add_argument("--out", type=Path, default=Path("runs/rllib"))
     parser.add_argument("--summary", type=Path, help="write the run's figures here as JSON")
+    parser.add_argument("--reward-mode", choices=REWARD_MODES,
+                        help=f"the environment's reward_mode (default: ppo.yml's, {ENV_KWARGS.get('reward_mode')!r})")
     parser.add_argument("--quick", action="store_true", help="one tiny iteration, for smoke tests")
     return parser
 
@@ -134,7 +139,8 @@ def main() -> None:
     head = next(node["NodeID"] for node in ray.nodes() if node["Alive"] and HEAD_RESOURCE in node["Resources"])
     print(f"Ray: {ray.cluster_resources().get('CPU', 0):g} CPUs on {len(nodes)} nodes; {args.env_runners} env runners")
     try:
-        algo = build(args.env_runners, args.batch, min(args.batch, PPO_PARAMS["batch_size"]), 2 if args.quick else PPO_PARAMS["n_epochs"])
+        algo = build(args.env_runners, args.batch, min(args.batch, PPO_PARAMS["batch_size"]),
+                     2 if args.quick else PPO_PARAMS["n_epochs"], args.reward_mode)
         placement = env_runner_nodes(algo)
         print(f"env runners on nodes: {placement}")
         iterations = []
