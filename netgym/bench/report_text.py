@@ -53,14 +53,14 @@ ERROR_MODEL_TEXT = (
     "zero check before each division. Bitwise the same results (the golden episodes); on the basket, one run: "
     "IMEX Euler step 112 -> 89 us, the accelerations of the explicit methods 41 -> 35 us.")
 DAMPER_SHARES_TEXT = (
-    "- IMEX Euler's damper shares computed once per step size (2026-12-02): what each spring's damper solve t"
-    "akes of its closing speed depends on dt and the masses alone, so the division that gave it each step now"
-    " runs only when dt changes (the scratch keeps the dt its shares are for; implicit Euler, which uses the "
-    "same columns, clears it). Bitwise the same results (the golden episodes; a test steps a scratch used at "
-    "another dt, and one implicit Euler used, against a fresh one). On the basket, one process alternating th"
-    "e two 1500 times, one step a call from Python: a throw step (2 ms, a ball in the net) p10 80.6 -> 75.3 u"
-    "s, median ratio 0.934; a pause step (11.5 ms) p10 136.7 -> 131.8 us, median ratio 0.965; the kernels alo"
-    "ne, compiled side by side, 56 -> 51 us a step.")
+    "- IMEX Euler's damper shares computed once per step size (2026-12-02): what each spring's damper solve "
+    "takes of its closing speed depends on dt and the masses alone, so the division that gave it each step "
+    "now runs only when dt changes (the scratch keeps the dt its shares are for; implicit Euler, which uses "
+    "the same columns, clears it). Bitwise the same results (the golden episodes; a test steps a scratch used "
+    "at another dt, and one implicit Euler used, against a fresh one). On the basket, one process alternating "
+    "the two 1500 times, one step a call from Python: a throw step (2 ms, a ball in the net) p10 80.6 -> 75.3 "
+    "us, median ratio 0.934; a pause step (11.5 ms) p10 136.7 -> 131.8 us, median ratio 0.965; the kernels "
+    "alone, compiled side by side, 56 -> 51 us a step.")
 NOTHING_TO_SETTLE_TEXT = (
     "- No pause where nothing moved, none to compute where the answer is known: a missed ball flown in closed "
     "form clear of the sleeping scene leaves it asleep (it woke the net for a pause of at least the 0.1 s rest "
@@ -207,12 +207,12 @@ PAUSE_TEXT = (
     "0.05 m/s): the pause took no fewer steps (p50 49 -> 50); its length is the balls' own motion. Tried "
     "earlier with the Python loop (every body damped, checked every 10 ms), a 3.7 ms pause settled more "
     "slowly than the 2 ms one (29 -> 21 throws/s)."
-    " Tried a third time on 2026-12-02, each ball touching no other ball damped on its own kinetic energy"
-    " (zeroed after any step in which it fell), piles left alone: on 40 loaded nets (section 9) p50 3.3 m"
-    "s a pause against 4.5 and 0.39 s simulated against 0.53, and 1000 of 1000 throws at positions 2..5 s"
-    "till agreed (section 8; 111.0 against 67.5 throws/s there, in one run), but the balls ended p90 440 "
-    "mm from the fine relaxation against 154, and the wall tail grew (p99 31.5 against 18.6 ms): a ball z"
-    "eroed as it first strikes the side netting stays there. Not adopted.")
+    " Tried a third time on 2026-12-02, each ball touching no other ball damped on its own kinetic energy "
+    "(zeroed after any step in which it fell), piles left alone: on 40 loaded nets (section 9) p50 3.3 ms a "
+    "pause against 4.5 and 0.39 s simulated against 0.53, and 1000 of 1000 throws at positions 2..5 still "
+    "agreed (section 8; 111.0 against 67.5 throws/s there, in one run), but the balls ended p90 440 mm from "
+    "the fine relaxation against 154, and the wall tail grew (p99 31.5 against 18.6 ms): a ball zeroed as it "
+    "first strikes the side netting stays there. Not adopted.")
 
 CONTACT_ORDER_TEXT = (
     "- Contacts between balls resolved before each ball's supports, its poles and the net (2026-11-27): a "
