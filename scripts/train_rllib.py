@@ -15,9 +15,8 @@ as soon as the cluster has a CPU for it, and training goes on with the healthy o
 The script prints, each iteration, its seconds, the capture rate of the episodes its env runners
 finished (by default the training return is the shaped reward of ``agents/hyperparams/ppo.yml``,
 which pays near misses too; ``--reward-mode sparse`` pays captures alone), the healthy env runners,
-and where the env runners run; ``--summary`` writes
-the same as JSON. The checkpoint is a policy that
-``scripts/evaluate.py`` evaluates like a saved SB3 model.
+and where the env runners run; ``--summary`` writes the same as JSON. The checkpoint is a policy
+that ``scripts/evaluate.py`` evaluates like a saved SB3 model.
 
 Usage::
 

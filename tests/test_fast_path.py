@@ -58,23 +58,26 @@ def _stored(name: str) -> dict:
     return json.loads(STORED.read_text())[name]
 
 
+Case = tuple[str, list[Throw], dict, list[bool]]
+
+
 @pytest.fixture(scope="module", params=list(CASES))
-def case(request: pytest.FixtureRequest) -> tuple[str, list[Throw], dict]:
-    """A case's name, its throws (checked against the stored ones) and its stored record."""
+def case(request: pytest.FixtureRequest) -> Case:
+    """A case's name, its throws (checked against the stored ones), its stored record and the
+    fast path's outcome of each throw (run once for the tests of the case)."""
     name = request.param
-    scene, _, count, seed, _, _ = CASES[name]
+    scene, overrides, count, seed, _, _ = CASES[name]
     throws = sample_throws(scene, count, seed)
     stored = _stored(name)
     assert [_throw_record(t) for t in throws] == stored["throws"], (
         f"sample_throws({scene!r}, {count}, seed={seed}) no longer draws the stored throws; regenerate "
         f"{STORED.name} (see this module's docstring)")
-    return name, throws, stored
+    return name, throws, stored, [r.captured for r in throw_each(scene, throws, 1, overrides)]
 
 
-def test_fast_path_agrees_with_the_full_simulation(case: tuple[str, list[Throw], dict]) -> None:
-    name, throws, stored = case
-    scene, overrides, _, _, least, _ = CASES[name]
-    fast = [r.captured for r in throw_each(scene, throws, 1, overrides)]
+def test_fast_path_agrees_with_the_full_simulation(case: Case) -> None:
+    name, _, stored, fast = case
+    least = CASES[name][4]
     full = [r["captured"] for r in stored["full"]]
     captured = sum(full) / len(full)
     agreement = sum(f == g for f, g in zip(fast, full)) / len(full)
@@ -84,14 +87,13 @@ def test_fast_path_agrees_with_the_full_simulation(case: tuple[str, list[Throw],
 
 
 @pytest.mark.slow
-def test_the_stored_full_simulation_is_reproduced(case: tuple[str, list[Throw], dict]) -> None:
+def test_the_stored_full_simulation_is_reproduced(case: Case) -> None:
     """Evenly spaced throws, and every throw on which the fast path disagrees, simulated fully
     again: each must reproduce its stored result exactly."""
-    name, throws, stored = case
+    name, throws, stored, fast = case
     scene, overrides, count, _, _, again = CASES[name]
-    fast = throw_each(scene, throws, 1, overrides)
     chosen = sorted(set(range(0, count, count // again))
-                    | {k for k, o in enumerate(fast) if o.captured != stored["full"][k]["captured"]})
+                    | {k for k, captured in enumerate(fast) if captured != stored["full"][k]["captured"]})
     results = throw_each(scene, [throws[k] for k in chosen], 2, overrides, fast=False)
     for k, result in zip(chosen, results):
         assert _result_record(result) == stored["full"][k], (

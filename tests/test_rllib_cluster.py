@@ -113,7 +113,7 @@ def test_train_rllib_quick_runs_one_iteration_on_a_cluster(tmp_path: Path) -> No
     """The script's smoke mode (one tiny iteration, two env runners), as CI runs it: on the
     local cluster, whose namespace keeps Ray on loopback."""
     _needs_cluster()
-    summary, out = _train_on_cluster(tmp_path, ITERATIONS, train_args=("--quick",))
+    summary, out = _train_on_cluster(tmp_path, 1, train_args=("--quick",))
     assert "iteration 1:" in out and "checkpoint" in out
     assert [it["healthy"] for it in summary["iterations"]] == [2]  # --quick: one iteration, two env runners
     assert Path(summary["checkpoint"]).is_dir()
