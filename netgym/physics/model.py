@@ -98,6 +98,13 @@ SETTINGS_CLASSES: dict[Integrator, type[Settings]] = {integrator: _settings_clas
 globals().update({cls.__name__: cls for cls in SETTINGS_CLASSES.values()})  # numba's cache pickles them by name
 
 
+def kernel_indices(pairs: np.ndarray) -> np.ndarray:
+    """Particle index pairs as the kernels take them: unsigned, so that numba indexes with them
+    directly instead of first wrapping a negative index around (an index can never be negative
+    here); the same results, bitwise, about a tenth faster a spring pass."""
+    return np.ascontiguousarray(pairs, dtype=np.uint32)
+
+
 @dataclass(frozen=True)
 class Model:
     """Static description of a scene, as arrays ready for the kernels.
@@ -174,8 +181,8 @@ class Model:
         """The arrays and constants the kernels need, as one record; its springs in
         :func:`wavefront_order`."""
         order = wavefront_order(self.springs, self.n_net)
-        springs, params = np.ascontiguousarray(self.springs[order]), np.ascontiguousarray(self.spring_params[order])
-        return KernelModel(self.n_net, springs, params, self.segments, self.segment_start, self.poles,
+        springs, params = kernel_indices(self.springs[order]), np.ascontiguousarray(self.spring_params[order])
+        return KernelModel(self.n_net, springs, params, kernel_indices(self.segments), self.segment_start, self.poles,
                            Materials.of_table(self.contact), self.restitution_threshold, self.gravity, self.drag,
                            self.ball_radius, self.opening.kernel_record(), self.ball_drag, self.wind)
 
