@@ -121,7 +121,10 @@ class SimulationConfig:
     ends when no body has moved faster than this over 0.1 s (the scene is then stopped).
     The pause seeks an equilibrium, not a trajectory: it steps with ``settle_integrator`` at
     ``settle_dt`` (s), or at 90% of that integrator's linear stability limit on the net if
-    that is smaller, and falls back to ``integrator`` at ``dt`` should it diverge.
+    that is smaller, and falls back to ``integrator`` at ``dt`` should it diverge. Meanwhile the
+    net's inertia is ``settle_inertia`` times its mass, its weight unchanged (dynamic relaxation
+    with a fictitious mass: the same equilibrium, frequencies sqrt(settle_inertia) lower, so the
+    stability limit, and with it the pause's step, that much longer).
     """
 
     integrator: str = _choice(*INTEGRATORS)
@@ -136,6 +139,7 @@ class SimulationConfig:
     settle_speed: float = _num(0.0, 1.0, lo_open=True)
     settle_integrator: str = _choice(*INTEGRATORS)
     settle_dt: float = _num(0.0, 0.05, lo_open=True)
+    settle_inertia: float = _num(1.0, 100.0, default=1.0)
 
 
 @dataclass(frozen=True)

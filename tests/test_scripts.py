@@ -43,7 +43,7 @@ def test_bench_episodes_quick_books_the_settling_and_runs_a_candidate_beside_eac
     assert oracle_basket[1].strip() == "basket" and candidate[1].strip() == "basket (simulation.settle_dt=0.002)"
     assert oracle_basket[2].strip() == "oracle" and oracle_basket[5].strip() == "100.0%"
     assert float(oracle_basket[6]) > 0 and oracle_basket[8].split("/")[2].strip() != "0"  # pauses happened
-    # the same episodes paused at 2 ms instead of 11.5 ms take more settling substeps
+    # the same episodes paused at 2 ms instead of 26.9 ms take more settling substeps
     assert float(candidate[8].split("/")[0]) > float(oracle_basket[8].split("/")[0])
 
 
@@ -107,7 +107,7 @@ def test_report_quick_covers_every_section() -> None:
     assert "NumPy vectorised" in out
     assert "Reference: rk4 at dt = 0.0001 s." in out  # --quick settles its coarser reference in seconds
     assert "| default | 2..N | all | 4 |" in out  # two 3-ball episodes against a fresh reference
-    assert "| default (IMEX Euler, 11.5 ms, to 0.1 m/s) |" in out
+    assert "| default (IMEX Euler, 26.9 ms, net inertia 4x, to 0.1 m/s) |" in out
 
 
 @pytest.mark.slow
@@ -136,13 +136,14 @@ def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same
     from netgym.physics.simulator import Simulator
 
     assert f"{Simulator('basket').settle_dt * 1e3:.1f} ms" in list(PAUSES)[0]  # the default's label says its step
-    out = _run("scripts/pause_accuracy.py", "--quick", "--candidate", "simulation.settle_dt=0.006")
+    out = _run("scripts/pause_accuracy.py", "--quick", "--candidate",
+               "simulation.settle_dt=0.006,simulation.settle_inertia=1")
     main, grouped = (block for block in out.split("\n\n") if block.startswith("| "))
     rows = [line.split("|") for line in main.splitlines() if "---" not in line][1:]
-    candidate = "default with simulation.settle_dt=0.006"
+    candidate = "default with simulation.settle_dt=0.006, simulation.settle_inertia=1"
     assert [row[1].strip() for row in rows] == [*PAUSES, candidate]
     by_label = {row[1].strip(): row for row in rows}
-    # the candidate's default pause is the 6 ms pause, from the same loaded nets: the same errors
+    # the candidate's default pause is the 6 ms pause of the net's own inertia, from the same loaded nets: the same errors
     columns = (2, 3, 4, 6)  # nets at rest, not at rest, ball errors, net errors
     assert [by_label[candidate][k] for k in columns] == [by_label["6 ms steps, to 0.1 m/s"][k] for k in columns]
     left_out = int(out.split(" of 2 loaded nets")[0])

@@ -28,7 +28,8 @@ from netgym.errors import NetNotAtRestError
 
 REFERENCE_OVERRIDES = {
     "simulation.dt": 5e-4,           # s, a quarter of the default
-    "simulation.settle_dt": 5e-4,    # s, the pause steps as finely (default 11.5 ms on the basket)
+    "simulation.settle_dt": 5e-4,    # s, the pause steps as finely (default 26.9 ms on the basket)
+    "simulation.settle_inertia": 1.0,  # the pause's net with its own inertia (default 4x on the basket)
     "simulation.settle_speed": 1e-3,  # m/s, the pause's rest test (default 0.1; at 1e-4 a resting ball and
                                       # the net under it keep a stick-slip cycle of ~0.4 mm/s at this dt)
 }

@@ -28,10 +28,11 @@ from netgym.physics.simulator import Simulator
 
 REFERENCE = {"dt": 5e-4, "settle_speed": 3e-3, "max_time": 20.0}
 PAUSES = {  # label: arguments of Simulator.relax_plan (none: the default pause)
-    "default (IMEX Euler, 11.5 ms, to 0.1 m/s)": {},
+    "default (IMEX Euler, 26.9 ms, net inertia 4x, to 0.1 m/s)": {},
+    "11.5 ms steps, net's own inertia, to 0.1 m/s": {"dt": 0.0115},
     "2 ms steps, to 0.1 m/s": {"dt": 2e-3},
     "6 ms steps, to 0.1 m/s": {"dt": 6e-3},
-    "11.5 ms steps, to 0.01 m/s": {"settle_speed": 1e-2},
+    "default pause to 0.01 m/s": {"settle_speed": 1e-2},
     "finer reference (0.25 ms, to 3 mm/s)": {"dt": 2.5e-4, "settle_speed": 3e-3, "max_time": 20.0},
 }
 DROP_HEIGHT = 3.6             # m, above the basket's opening at z = 3

@@ -5,8 +5,9 @@ findings and tried-and-not-adopted changes, with their dates, that a new run of 
 EPISODES_TEXT = ("What training pays: whole episodes of NetCatch-v0 on one process (`scripts/bench_episodes.py`), "
                  "with the ballistic oracle, the shipped PPO model and random actions. With the oracle and the PPO "
                  "model every ball is caught, so after every throw but an episode's last "
-                 "the loaded net settles (dynamic relaxation, the net kinetically damped, IMEX Euler at "
-                 "`simulation.settle_dt`, 11.5 ms on the basket: 90% of its stability limit there) until nothing has moved faster than "
+                 "the loaded net settles (dynamic relaxation, the net kinetically damped and four times as heavy as it "
+                 "is, its weight unchanged, IMEX Euler at `simulation.settle_dt`, 26.9 ms on the basket: 90% of its "
+                 "stability limit there) until nothing has moved faster than "
                  "`simulation.settle_speed` (0.1 m/s) over the last 0.1 s; `info['settle_substeps']` books that pause "
                  "in the step that caused it and `info['substeps']` all the work of a step.")
 AGREEMENT_TEXT = (
@@ -16,7 +17,7 @@ AGREEMENT_TEXT = (
     "than 1 mm/s. Throws 2..N meet the net and the balls as each pipeline left them, so they test the pause and the "
     "fast path together. `python scripts/episode_agreement.py` (the reference is stored in "
     "`docs/figures/episode_reference.json`; `--candidate FIELD=VALUE` compares other settings against it). The "
-    "second pipeline pauses at the scene's own 2 ms step instead of `simulation.settle_dt` (11.5 ms).")
+    "second pipeline pauses at the scene's own 2 ms step instead of `simulation.settle_dt` (26.9 ms).")
 STATIC_PAUSE_TEXT = (
     "- Tried, not adopted: the pause as a static equilibrium solve (branch `experiment/static-pause`): minimise "
     "spring + gravity energy with penalty contacts by damped Newton (Levenberg-Marquardt, the springs' Hessian "

@@ -75,7 +75,8 @@ class Film:
         self.record = record
         self.settling = settling
 
-    def __call__(self, sim: Any) -> None:
-        """Record ``sim`` if now is an instant of the clock not yet taken."""
-        if self.clock.take(sim.state.time, 0.5 * sim.dt + 1e-9):
+    def __call__(self, sim: Any, step: float | None = None) -> None:
+        """Record ``sim`` if now is an instant of the clock not yet taken (within half the
+        ``step`` just taken: the scene's dt unless given, the pause's in a relaxation)."""
+        if self.clock.take(sim.state.time, 0.5 * (sim.dt if step is None else step) + 1e-9):
             self.record(sim)

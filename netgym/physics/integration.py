@@ -52,12 +52,13 @@ class Workspace:
 class RestTest:
     """What a relaxation remembers between kernel calls: the positions of its last ``window``
     steps, its last kinetic energy, and whether no coordinate moved more than ``displacement``
-    (m) over the window; ``damped``: the net is kinetically damped meanwhile (see
-    :func:`~netgym.physics.stepping.relax`)."""
+    (m) over the window; ``damped``: the net is kinetically damped meanwhile, ``inertia``: the
+    net's inertia as a multiple of its mass meanwhile (see :func:`~netgym.physics.stepping.relax`)."""
 
-    def __init__(self, shape: tuple[int, int], window: int, displacement: float, damped: bool = True) -> None:
+    def __init__(self, shape: tuple[int, int], window: int, displacement: float, damped: bool = True,
+                 inertia: float = 1.0) -> None:
         self.record = stepping.RestRecord(np.zeros((max(1, window), *shape)), stepping.new_rest_memory(),
-                                          float(displacement), bool(damped))
+                                          float(displacement), bool(damped), float(inertia))
 
     @property
     def steps(self) -> int:

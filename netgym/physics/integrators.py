@@ -301,9 +301,9 @@ def _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch):
     return iterations
 
 
-def smooth_step(settings, x, v, inv_mass, model, dt, scratch, stats):
+def smooth_step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
     """One step of ``dt`` of the smooth forces of ``model`` (a
-    :class:`~netgym.physics.model.KernelModel`: gravity, the net's drag, the springs) with the
+    :class:`~netgym.physics.model.KernelModel`: the net's drag, the springs) and ``gravity`` with the
     integrator ``settings`` are made for (their class, see
     :meth:`~netgym.physics.model.Settings.make`); ``scratch``: a :class:`Scratch`; implicit Euler
     adds its CG iterations to ``stats``. For numba kernels only: the integrator is chosen when
@@ -312,27 +312,27 @@ def smooth_step(settings, x, v, inv_mass, model, dt, scratch, stats):
 
 
 @overload(smooth_step, jit_options={"error_model": "numpy"})
-def _smooth_step(settings, x, v, inv_mass, model, dt, scratch, stats):
+def _smooth_step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
     """The implementation of :func:`smooth_step` for the integrator of ``settings``' type."""
     integrator = getattr(getattr(settings, "instance_class", None), "INTEGRATOR", None)
     if integrator is None:
         raise NumbaTypeError(f"smooth_step takes settings of one integrator (Settings.make or Settings.of), "
                              f"not {settings}")
     if integrator == Integrator.RK4:
-        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
-            step_rk4(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt, scratch.work)
+        def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
+            step_rk4(x, v, inv_mass, gravity, model.drag, model.springs, model.spring_params, dt, scratch.work)
     elif integrator == Integrator.IMEX_EULER:
-        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
-            step_imex_euler(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt,
+        def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
+            step_imex_euler(x, v, inv_mass, gravity, model.drag, model.springs, model.spring_params, dt,
                             scratch)
     elif integrator == Integrator.IMPLICIT_EULER:
-        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
-            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, model.gravity, model.drag, model.springs,
+        def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
+            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, gravity, model.drag, model.springs,
                                                           model.spring_params, dt, settings, scratch)
     else:
         symplectic = integrator == Integrator.SYMPLECTIC_EULER
 
-        def step(settings, x, v, inv_mass, model, dt, scratch, stats):
-            step_euler(x, v, inv_mass, model.gravity, model.drag, model.springs, model.spring_params, dt,
+        def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
+            step_euler(x, v, inv_mass, gravity, model.drag, model.springs, model.spring_params, dt,
                        scratch.work, symplectic)
     return step

@@ -91,7 +91,9 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
         elif isinstance(request, Relax):
             error = relax(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                           workspace, request.rest)
-        if error is None and observer is not None:
+        if error is None and isinstance(observer, Film):
+            observer(sim, request.dt if isinstance(request, Relax) else None)
+        elif error is None and observer is not None:
             observer(sim)
 
 
@@ -109,6 +111,6 @@ def _integrate_filmed(sim: Drivable, request: Integrate, workspace: Workspace, f
         if error is not None:
             return error
         left -= n
-        film(sim)
+        film(sim, request.dt)
     state.time = end
     return None

@@ -128,8 +128,10 @@ class Simulator:
                 f"{self.modes.omega:.0f} rad/s, damping rate {self.modes.damping:.0f} 1/s); use "
                 f"dt <= {self.stable_dt:.3g} s, or integrator = {_stabler_than(self.integrator)}")
         self.settle_integrator = Integrator.parse(config.simulation.settle_integrator)
+        self.settle_inertia = config.simulation.settle_inertia
+        self.settle_modes = self._net_modes(self.settle_inertia)
         self.settle_dt = min(config.simulation.settle_dt,
-                             SETTLE_STABILITY_SHARE * stable_dt(self.settle_integrator, self.modes))
+                             SETTLE_STABILITY_SHARE * stable_dt(self.settle_integrator, self.settle_modes))
         self.state = State.at_rest(self.model, self._settled_positions())
         self._rest_state = self.state.copy()
 
@@ -260,7 +262,8 @@ class Simulator:
 
         Dynamic relaxation with kinetic damping of the net (its velocities are zeroed just past a
         peak of its kinetic energy; the balls settle by their own friction and restitution), with
-        ``settle_integrator`` at :attr:`settle_dt`, until no body has
+        ``settle_integrator`` at :attr:`settle_dt` and the net's inertia ``settle_inertia`` times
+        its mass (see :class:`~netgym.config.SimulationConfig`), until no body has
         moved more than ``simulation.settle_speed`` times RELAX_WINDOW over RELAX_WINDOW; if that
         diverges, again from where it started with the scene's integrator and ``dt``. Raises
         :class:`NetNotAtRestError` if it does not settle within ``max_time`` simulated seconds.
@@ -271,28 +274,28 @@ class Simulator:
                    settle_speed: float | None = None, damped: bool = True, window: float = RELAX_WINDOW) -> Plan:
         """:meth:`relax` as a plan (see :meth:`run`); run with a :class:`Film` that films the
         settling, its requests end at the clock's instants too; ``integrator`` and ``dt`` replace the pause's own (then with no
-        fallback), ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False``
+        fallback; a ``dt`` given, with the net's true inertia), ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False``
         leaves out the kinetic damping (the net's own dynamics come to rest, or not), ``window``
         is the time over which nothing may have moved faster than the settle speed."""
         if integrator is not None or dt is not None:
             integrator = self.settle_integrator if integrator is None else integrator
             yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt,
-                                        settle_speed, damped, window)
+                                        settle_speed, damped, window, self.settle_inertia if dt is None else 1.0)
             return
         try:
             yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, settle_speed,
-                                        damped, window)
+                                        damped, window, self.settle_inertia)
         except SimulationDivergedError:
-            if (self.settle_integrator, self.settle_dt) == (self.integrator, self.dt):
+            if (self.settle_integrator, self.settle_dt, self.settle_inertia) == (self.integrator, self.dt, 1.0):
                 raise
             yield from self._relaxation(max_time, self.integrator, self.dt, settle_speed, damped, window)
 
     def _relaxation(self, max_time: float, integrator: int, dt: float, settle_speed: float | None, damped: bool,
-                    window: float) -> Plan:
-        """Dynamic relaxation with one integrator and dt (see :meth:`relax_plan`)."""
+                    window: float, inertia: float = 1.0) -> Plan:
+        """Dynamic relaxation with one integrator, dt and inertia of the net (see :meth:`relax_plan`)."""
         frames = self.film.clock if self.film is not None and self.film.settling else None
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
-        rest = RestTest(self.state.x.shape, round(window / dt), speed * window, damped)
+        rest = RestTest(self.state.x.shape, round(window / dt), speed * window, damped, inertia)
         started, taken = self.state.time, 0
         total, most = math.ceil(max_time / dt - 1e-9), max(1, round(RELAX_REQUEST / dt))
         while taken < total:
@@ -374,12 +377,14 @@ class Simulator:
         return (f"Use a smaller simulation.dt (linear stability limit of {Integrator(integrator).label} here: "
                 f"{limit:.3g} s), or integrator = {_stabler_than(integrator)}")
 
-    def _net_modes(self) -> NetModes:
-        """Fastest mode of the net linearised about its built shape (cached per net and springs)."""
-        key = (self.config.net, self.config.springs)
+    def _net_modes(self, inertia: float = 1.0) -> NetModes:
+        """Fastest mode of the net linearised about its built shape, its inertia ``inertia`` times
+        its mass (cached per net, springs and inertia)."""
+        key = (self.config.net, self.config.springs, inertia)
         if key not in _MODES:
             m = self.model
-            _MODES[key] = net_modes(m.geometry.positions, m.net_inv_mass, m.springs, m.spring_params, m.drag)
+            _MODES[key] = net_modes(m.geometry.positions, m.net_inv_mass / inertia, m.springs, m.spring_params,
+                                    m.drag)
         return _MODES[key]
 
     def _settled_positions(self) -> np.ndarray:

@@ -128,10 +128,11 @@ def _step_buffers(x, n_net):
 
 
 @kernel
-def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
+def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast: the
     passes of a substep in order, each handed the :class:`~netgym.physics.model.KernelModel`
-    or the parts of it it needs; ``buffers`` from :func:`_step_buffers`."""
+    or the parts of it it needs; ``buffers`` from :func:`_step_buffers`; ``net_gravity``: the
+    acceleration gravity gives the net (``model.gravity`` but in a relaxation with inertia)."""
     before_v, box, speeds, near = buffers
     n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
     start = scratch.work[START_SLOT]  # every body's position at the start of the substep
@@ -146,7 +147,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers):
         for b in range(n_balls):
             for c in range(3):
                 before_v[b, c] = v[n_net + b, c]
-        smooth_step(settings, x, v, inv_mass, model, h, scratch, stats)
+        smooth_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, stats)
         if n_balls > 0:
             _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
             _net_box(x, n_net, box)
@@ -177,7 +178,7 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, model.gravity)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
@@ -194,12 +195,14 @@ def _largest_displacement(x, earlier):
 class RestRecord(NamedTuple):
     """What :func:`relax` carries across calls: ``history`` (window, n_bodies, 3), the positions
     of the last steps; ``memory``, a one-record array of :data:`REST_MEMORY`; the rest test's
-    ``displacement`` (m) and whether the net is kinetically ``damped``."""
+    ``displacement`` (m), whether the net is kinetically ``damped``, and the net's ``inertia``
+    as a multiple of its mass (see :func:`relax`)."""
 
     history: np.ndarray
     memory: np.ndarray
     displacement: float
     damped: bool
+    inertia: float
 
 
 REST_MEMORY = np.dtype([("recorded", np.int64), ("kinetic", np.float64), ("steps", np.int64), ("at_rest", np.bool_)])
@@ -223,18 +226,47 @@ def relax(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, res
     dynamics (friction and restitution settle them): zeroing them too would hold a collapsing
     pile back step by step, so that it passed the rest test while still falling.
 
+    With ``rest.inertia`` > 1 the net's inertia is that many times its mass while its weight
+    stays (dynamic relaxation with a fictitious mass): the equilibrium is the same, the net's
+    frequencies are sqrt(inertia) lower, so that the relaxation may step that much longer, and
+    in contacts the net yields to a ball less. IMEX Euler's damper shares, computed for those
+    masses, are marked stale after the call.
+
     ``rest`` is a :class:`RestRecord`; its history and memory carry the relaxation across
     calls. Returns OK or DIVERGED as :func:`advance` does.
     """
+    weighted = rest.inertia != 1.0
+    inv_inertia = _inertial(inv_mass, model.n_net, rest.inertia) if weighted else inv_mass
+    if weighted:
+        scratch.coef_dt[0] = 0.0
+    status = _relax_steps(x, v, inv_inertia, entered, model, settings, n_steps, scratch, stats, rest)
+    if weighted:
+        scratch.coef_dt[0] = 0.0
+    return status
+
+
+@kernel
+def _inertial(inv_mass, n_net, inertia):
+    """``inv_mass`` with the net particles' divided by ``inertia``."""
+    scaled = inv_mass.copy()
+    for k in range(n_net):
+        scaled[k] = inv_mass[k] / inertia
+    return scaled
+
+
+@kernel
+def _relax_steps(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats, rest):
+    """The steps of :func:`relax`, with ``inv_mass`` its inertia's."""
     history, memory = rest.history, rest.memory[0]
     window = history.shape[0]
     buffers = _step_buffers(x, model.n_net)
+    net_gravity = model.gravity / rest.inertia
     memory.steps = 0
     memory.at_rest = False
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity)
         memory.steps = i + 1
         if rest.damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
