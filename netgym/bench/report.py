@@ -38,6 +38,7 @@ from netgym.bench.report_text import (
     FAST_PATH_TEXT,
     FLIGHT_TEXT,
     HELD_AGREEMENT_TEXT,
+    INERTIA_TEXT,
     NATIVE_VECTOR_ENV_TEXT,
     NOTHING_TO_SETTLE_TEXT,
     OUT_OF_PLAY_TEXT,
@@ -49,6 +50,7 @@ from netgym.bench.report_text import (
     STATIC_PAUSE_TEXT,
     STEP_LIMIT_TEXT,
     SUBSTEPS_TEXT,
+    UNSIGNED_INDEX_TEXT,
     WAVEFRONT_TEXT,
 )
 from netgym.bench.settings import DEFAULT, PEER_SETTING, QUICK_REFERENCE, REFERENCE
@@ -155,9 +157,11 @@ def _gains(report: Report) -> list[str]:
         WAVEFRONT_TEXT,
         ERROR_MODEL_TEXT,
         DAMPER_SHARES_TEXT,
+        UNSIGNED_INDEX_TEXT,
         NOTHING_TO_SETTLE_TEXT,
         PAUSE_TEXT,
         STEP_LIMIT_TEXT,
+        INERTIA_TEXT,
         FLIGHT_TEXT,
         NATIVE_VECTOR_ENV_TEXT,
         CONTACT_ORDER_TEXT,
@@ -165,7 +169,7 @@ def _gains(report: Report) -> list[str]:
         BROAD_PHASE_TEXT,
         DECIDED_EARLY_TEXT,
         PILE_FRICTION_TEXT,
-    ROOFLINE_TEXT,
+        ROOFLINE_TEXT,
         STATIC_PAUSE_TEXT,
     ]
 

@@ -62,6 +62,28 @@ DAMPER_SHARES_TEXT = (
     "the two 1500 times, one step a call from Python: a throw step (2 ms, a ball in the net) p10 80.6 -> 75.3 "
     "us, median ratio 0.934; a pause step (11.5 ms) p10 136.7 -> 131.8 us, median ratio 0.965; the kernels "
     "alone, compiled side by side, 56 -> 51 us a step.")
+UNSIGNED_INDEX_TEXT = (
+    "- The kernels index with unsigned 32-bit particle pairs (2026-12-02): numba wraps a signed index around "
+    "before each access (a negative index counts from the end), an unsigned one it uses as it is. Bitwise the "
+    "same results (the golden episodes). The IMEX Euler step on the basket, micro-benchmark interleaved, min of "
+    "15: 53.0 -> 50.3 us; oracle 3-ball episodes, both index types alternating in one process (8 x 20 "
+    "episodes): median ratio 1.045 throws/s (0.81-1.29, the machine's swings).")
+INERTIA_TEXT = (
+    "- The pause relaxes a net four times as heavy, its weight unchanged (2026-12-02): dynamic relaxation "
+    "with a fictitious mass, `simulation.settle_inertia` (4 on the basket, 1 by default). Its equilibrium is "
+    "the net's own, its frequencies half as high, IMEX Euler's stability limit on it (damper sweep included) "
+    "12.8 -> 29.9 ms, so the pause steps 26.9 ms instead of 11.5 ms; how long it lasts is set by the caught "
+    "balls rolling about the bottom (0.4-0.6 s of their own dynamics), which fewer, longer steps cover. "
+    "Oracle 3-ball basket episodes, settle substeps p50 47 -> 21; this change alone, both in one process "
+    "(6 x 15 episodes): 1.36x throws/s (inertia 9: 1.50x; 2: 1.05x). Episodes (section 8): 1000 of 1000 "
+    "throws at positions 2..5 agree with the reference, at inertia 4 and 9. On 38 loaded nets against the "
+    "pause at 11.5 ms with the net's own inertia: net RMS error p50 / p90 6.0 / 15.8 -> 3.9 / 8.1 mm, ball "
+    "drift in the next second 22.5 / 48.1 -> 11.8 / 23.1 mm, wall p99 26.9 -> 10.1 ms; but the balls come to "
+    "rest farther from the fine relaxation, p50 / p90 78 / 201 -> 116 / 392 mm (inertia 9: 219 / 598): a "
+    "heavier net yields to a rolling ball more slowly, so it rolls another path, and with friction where it "
+    "stops depends on the path (section 9). Inertia 9 not taken for that. A relaxation given its step (the "
+    "references, the fallback after a divergence) keeps the net's own inertia; a new net settles with the "
+    "pause's, then on its own dynamics.")
 NOTHING_TO_SETTLE_TEXT = (
     "- No pause where nothing moved, none to compute where the answer is known: a missed ball flown in closed "
     "form clear of the sleeping scene leaves it asleep (it woke the net for a pause of at least the 0.1 s rest "
