@@ -160,8 +160,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
       resting contacts hold static friction (balls no longer creep on the settled net); the
       goal scene counts a goal by the ``line`` rule, and takes the ball out once it is scored;
       ``info`` books the settling pause; the basket's pause relaxes the net with four times
-      its inertia (``simulation.settle_inertia``): the same outcomes, the balls at rest a few
-      centimetres elsewhere.
+      its inertia (``simulation.settle_inertia``): the same outcomes, the balls at rest
+      elsewhere (BENCHMARKS section 9).
       Options added without changing v0's dynamics: ``reset(options=...)``, ``render_settling``,
       and the variation arguments ``wind``, ``launch_noise``, ``feedback`` (off by default).
     - ``NetCatchWindy-v0``, ``NetCatchNoisy-v0``, ``NetCatchRandomized-v0`` and
