@@ -273,10 +273,11 @@ class Simulator:
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
                    settle_speed: float | None = None, damped: bool = True, window: float = RELAX_WINDOW) -> Plan:
         """:meth:`relax` as a plan (see :meth:`run`); run with a :class:`Film` that films the
-        settling, its requests end at the clock's instants too; ``integrator`` and ``dt`` replace the pause's own (then with no
-        fallback; a ``dt`` given, with the net's true inertia), ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False``
-        leaves out the kinetic damping (the net's own dynamics come to rest, or not), ``window``
-        is the time over which nothing may have moved faster than the settle speed."""
+        settling, its requests end at the clock's instants too; ``integrator`` and ``dt`` replace
+        the pause's own (then with no fallback; a ``dt`` given, with the net's true inertia),
+        ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False`` leaves out the
+        kinetic damping (the net's own dynamics come to rest, or not), ``window`` is the time over
+        which nothing may have moved faster than the settle speed."""
         if integrator is not None or dt is not None:
             integrator = self.settle_integrator if integrator is None else integrator
             yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt,
