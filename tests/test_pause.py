@@ -107,12 +107,11 @@ def test_a_relaxation_with_inertia_leaves_the_damper_shares_of_true_masses() -> 
     model, settings = sim.kernel_model, sim.settings(Integrator.IMEX_EULER, sim.dt)
     sim.state.v[:, 2] = 0.3 * (sim.state.inv_mass > 0)
     used, fresh = Workspace(), Workspace()
-    states = [sim.state.copy(), sim.state.copy()]
-    rest = RestTest(sim.state.x.shape, 5, -1.0, True, inertia=4.0)
-    s = states[0]
+    s = sim.state.copy()
+    rest = RestTest(s.x.shape, 5, -1.0, True, inertia=4.0)
     stepping.relax(s.x, s.v, s.inv_mass, s.entered, model, settings, 3, used.scratch(len(s.x), len(model.springs)),
                    sim.counters, rest.record)
-    states[1] = s.copy()
+    states = [s, s.copy()]
     for state, workspace in zip(states, (used, fresh)):
         stepping.advance(state.x, state.v, state.inv_mass, state.entered, model, settings, 4,
                          workspace.scratch(len(state.x), len(model.springs)), sim.counters)

@@ -41,8 +41,9 @@ START_SLOT = 7   # the one slot the integrators leave alone: positions at the st
 class Scratch(NamedTuple):
     """Scratch space of the integrators: ``work`` (WORK_SLOTS, n_bodies, 3), ``coef`` (n_springs, 5)
     and ``coef_dt`` (1,): the step for which ``coef``'s last two columns hold IMEX Euler's damper
-    shares (they depend on the step alone, so :func:`step_imex_euler` computes them once per step
-    size), 0 when they hold anything else. A scratch serves one net: its springs and masses."""
+    shares (they depend on the step and the masses, so :func:`step_imex_euler` computes them once
+    per step size), 0 when they hold anything else or were computed for other masses (a
+    relaxation with inertia sets it so). A scratch serves one net: its springs and masses."""
 
     work: np.ndarray
     coef: np.ndarray
@@ -110,8 +111,9 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, scratch)
     spring's damper alone is integrated with backward Euler along its axis at the start of the
     step: its closing speed c becomes ``c / (1 + h kd (w_i + w_j))``. Every such update removes
     kinetic energy and the symmetric sweep is a symmetric contraction, so the dampers no longer
-    limit the stable dt (the elastic frequencies do). The shares of that update depend on dt
-    alone: they are computed again only when dt differs from the step before's.
+    limit the stable dt (the elastic frequencies do). The shares of that update depend on dt and
+    the masses: they are computed again only when dt differs from ``scratch.coef_dt`` (which
+    whoever changes the masses sets to 0).
     """
     a, coef = scratch.work[0], scratch.coef
     a[:] = 0.0
