@@ -6,12 +6,14 @@ box, how far a point is from it, its packed form for the kernels) is answered he
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 
 from netgym.config import NetConfig
+from netgym.physics.jit import inline_kernel, kernel
 
 
 class OpeningRecord(NamedTuple):
@@ -91,14 +93,34 @@ class Opening:
 
     def distance(self, points: np.ndarray) -> np.ndarray:
         """Distances from points (k, 3) to the rectangle."""
-        nearest = np.array(points, dtype=np.float64)
-        nearest[:, self.axis] = self.plane
-        for axis, lo, hi in zip(self.tangent_axes, self.tangent_lower, self.tangent_upper):
-            nearest[:, axis] = np.clip(points[:, axis], lo, hi)
-        return np.linalg.norm(points - nearest, axis=1)
+        out = np.empty(len(points))
+        opening_distances(self.kernel_record(), np.asarray(points, dtype=np.float64), out)
+        return out
 
     def kernel_record(self) -> OpeningRecord:
         """The form the kernels take."""
         (u, w), (ulo, wlo), (uhi, whi) = self.tangent_axes, self.tangent_lower, self.tangent_upper
         return OpeningRecord(int(self.axis), float(self.sign), float(self.plane), int(u), int(w), float(ulo),
                              float(uhi), float(wlo), float(whi))
+
+
+@inline_kernel
+def opening_distance(opening, point):
+    """Distance from ``point`` (3,) to the rectangle of an :class:`OpeningRecord`."""
+    total = 0.0
+    for c in range(3):
+        if c == opening.axis:
+            d = point[c] - opening.plane
+        elif c == opening.u:
+            d = point[c] - min(max(point[c], opening.u_lo), opening.u_hi)
+        else:
+            d = point[c] - min(max(point[c], opening.w_lo), opening.w_hi)
+        total += d * d
+    return math.sqrt(total)
+
+
+@kernel
+def opening_distances(opening, points, out):
+    """Write into ``out`` (k,) the distances from ``points`` (k, 3) to the opening's rectangle."""
+    for k in range(points.shape[0]):
+        out[k] = opening_distance(opening, points[k])

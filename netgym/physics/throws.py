@@ -22,7 +22,7 @@ import numpy as np
 
 from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
-from netgym.physics import air, contacts, flight, stepping
+from netgym.physics import air, contacts, flight, reach, stepping
 from netgym.physics.outcomes import Reason
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick
 from netgym.physics.surroundings import still_since, survey
@@ -96,7 +96,8 @@ class Course:
     launched: float               # simulated time of the launch: the origin of the full simulation's step grid
     deadline: float               # the launch plus the time limit
     substeps: int                 # the simulator's substeps at the launch
-    reference_energy: float       # potential energy of everything but the ball at the launch
+    budget: reach.Budget          # what the energy bound measures against (the potential energy at the launch)
+    about: float                  # the ball's radius + the largest radius about the other bodies (a pole's, a ball's)
     from_front: bool              # launched in front of the opening's plane: it can go out of play
     decision: Reason | None = None  # the capture rule's, once it decided
     recent: list[tuple[float, np.ndarray]] = field(default_factory=list)  # (time, positions) of the last rest window
@@ -171,9 +172,15 @@ class Throw:
             if not self.film.settling:
                 self.film.clock.restart(s.time)
             yield Tick()  # the launch
+        m, km = sim.model, sim.kernel_model
+        around = max(float(m.poles.radius.max(initial=0.0)), m.ball_radius if sim.n_balls > 1 else 0.0)
         self.course = Course(launched=s.time, deadline=s.time + sim.config.simulation.time_limit,
-                             substeps=sim.substeps, reference_energy=self._potential_without_ball(sim.energy()),
-                             from_front=sim.opening.depth(s.x[self.ball.row]) <= 0.0)
+                             substeps=sim.substeps, budget=reach.Budget(
+                                 reach.potential_without_ball(s.x, s.v, s.inv_mass, self.ball.row, km.gravity,
+                                                              km.springs, km.spring_params),
+                                 sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind), km.gravity,
+                                 m.ball_radius, sim.opening.lowest_z),
+                             about=m.ball_radius + around, from_front=sim.opening.depth(s.x[self.ball.row]) <= 0.0)
 
     def _until_decided(self) -> Plan:
         """Simulate the ball until its outcome is decided; returns the :class:`Reason`.
@@ -387,11 +394,10 @@ class Throw:
         the bounding box of the net particles, the poles' axes and the other balls' centres,
         grown by the ball radius + the largest radius about those (a pole's, another ball's) +
         ``margin``: outside it the ball is more than ``margin`` from everything."""
-        m, s = self.sim.model, self.sim.state
+        s = self.sim.state
         box = np.empty(6)
-        others = survey(s.x, s.v, self.ball.row, m.poles, box)
-        about = max(float(m.poles.radius.max(initial=0.0)), m.ball_radius if self.sim.n_balls > 1 else 0.0)
-        grow = m.ball_radius + about + margin
+        others = survey(s.x, s.v, self.ball.row, self.sim.model.poles, box)
+        grow = self.course.about + margin
         return others, box[:3] - grow, box[3:] + grow
 
     def _never_enters(self, lo: np.ndarray, hi: np.ndarray, horizon: float) -> bool:
@@ -451,11 +457,6 @@ class Throw:
         sim.restore(kept)
 
     # ------------------------------------------------------------------ the fast path's decisions
-    def _potential_without_ball(self, energy: Any) -> float:
-        """Potential energy of everything but the ball (``energy``: the current one)."""
-        s, row = self.sim.state, self.ball.row
-        return energy.spring + energy.gravity + self.sim.model.gravity / s.inv_mass[row] * s.x[row, 2]
-
     def _remember_positions(self) -> None:
         """Note every body's position now, and forget those the rest window no longer needs
         (the oldest kept is the latest at least ``rest_window`` old)."""
@@ -474,31 +475,20 @@ class Throw:
         s, m, recent = self.sim.state, self.sim.model, self.course.recent
         if s.time - recent[0][0] < TUNING.rest_window - TUNING.time_epsilon:
             return False
-        reach = 2.0 * m.ball_radius + TUNING.rest_reach
+        near = 2.0 * m.ball_radius + TUNING.rest_reach
         bound = self.sim.config.simulation.rest_speed * TUNING.rest_window
-        return all(still_since(s.x, x, self.ball.row, reach, bound) for _, x in recent[:-1])
+        return all(still_since(s.x, x, self.ball.row, near, bound) for _, x in recent[:-1])
 
     def _decided(self, at_rest: bool, lo: np.ndarray, hi: np.ndarray) -> Reason | None:
         """The reason the throw's outcome is decided now, or None (``lo``, ``hi``: the region
         from :meth:`_survey` with ``awake_margin``). The energy bound counts, besides the energy
         free now, all the wind could still feed the balls before the deadline."""
-        sim, deadline = self.sim, self.course.deadline
-        s, m, row = sim.state, sim.model, self.ball.row
-        p = s.x[row]
+        s, km = self.sim.state, self.sim.kernel_model
         if self._never_enters(lo, hi, math.inf):
             return Reason.FLIES_AWAY
         if at_rest:
             return Reason.AT_REST
-        energy = sim.energy()  # one evaluation per check: kinetic and potential together
-        free = energy.kinetic + max(0.0, self._potential_without_ball(energy) - self.course.reference_energy)
-        free += sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind) * max(0.0, deadline - s.time)
-        reach = p[2] + free * s.inv_mass[row] / abs(m.gravity) if m.gravity != 0.0 else math.inf
-        if reach < sim.opening.lowest_z:
-            return Reason.CANNOT_REACH_OPENING
-        # nor can it get to the opening before the deadline, at the speed all that energy and
-        # its own fall to the ground could give it (a vertical mouth has no height to climb)
-        fall = abs(m.gravity) * max(0.0, p[2] - m.ball_radius) / s.inv_mass[row]
-        top_speed = math.sqrt(2.0 * (free + fall) * s.inv_mass[row])
-        if top_speed * (deadline - s.time) < float(sim.opening.distance(p[None])[0]):
+        if reach.out_of_reach(s.x, s.v, s.inv_mass, self.ball.row, km.springs, km.spring_params, km.opening,
+                              self.course.budget, self.course.deadline - s.time):
             return Reason.CANNOT_REACH_OPENING
         return None
