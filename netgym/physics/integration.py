@@ -1,9 +1,10 @@
 """Integration of one state of a scene: the one Python entry to the stepping kernels.
 
-:func:`integrate` and :func:`relax` own the bookkeeping around
-:func:`~netgym.physics.stepping.advance` and :func:`~netgym.physics.stepping.relax`: a copy of
-the state before, the simulated time after, and on divergence the restored state and a
-:class:`~netgym.errors.SimulationDivergedError`. The state is integrated in place.
+:func:`integrate`, :func:`integrate_watched` and :func:`relax` own the bookkeeping around
+:func:`~netgym.physics.stepping.advance`, :func:`~netgym.physics.watch.integrate_watched` and
+:func:`~netgym.physics.stepping.relax`: a copy of the state before, the simulated time after,
+and on divergence the restored state and a :class:`~netgym.errors.SimulationDivergedError`.
+The state is integrated in place.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from netgym.physics import stepping
 from netgym.physics.integrators import Scratch
 from netgym.physics.kinds import Integrator
 from netgym.physics.model import KernelModel, Settings, State
+from netgym.physics.watch import Watch
+from netgym.physics.watch import integrate_watched as integrate_kernel
 
 
 class Integrand(Protocol):
@@ -79,7 +82,18 @@ def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.advance(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters), n_steps))
+        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters), s.time + n_steps * settings.dt))
+
+
+def integrate_watched(target: Integrand, model: KernelModel, settings: Settings, workspace: Workspace,
+                      watch: Watch) -> SimulationDivergedError | None:
+    """Integrate ``target.state`` chunk after chunk until ``watch`` sees something that could
+    be decided (see :func:`~netgym.physics.watch.integrate_watched`); returns as
+    :func:`integrate` does."""
+    s = target.state
+    return _guarded(target, settings, round((watch.deadline - s.time) / settings.dt), lambda: integrate_kernel(
+        s.x, s.v, s.inv_mass, s.entered, model, settings, workspace.scratch(s.x.shape[0], model.springs.shape[0]),
+        target.counters, watch, s.time))
 
 
 def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: int, workspace: Workspace,
@@ -89,18 +103,20 @@ def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: in
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.record), rest.steps))
+        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.record),
+        s.time + rest.steps * settings.dt))
 
 
 def _guarded(target: Integrand, settings: Settings, n_steps: int,
-             kernel: Callable[[], tuple[int, int]]) -> SimulationDivergedError | None:
-    """Run ``kernel()`` (returning its status and the steps it took) on a copy-guarded state:
-    the time moves on by the steps taken, or the state is restored and the error returned."""
+             kernel: Callable[[], tuple[int, float]]) -> SimulationDivergedError | None:
+    """Run ``kernel()`` (returning its status and the time it reached) on a copy-guarded state:
+    the time moves on to that reached, or the state is restored and the error returned
+    (``n_steps``: the most steps the call could take, for the error)."""
     s = target.state
     before = s.copy()
-    status, steps = kernel()
+    status, time = kernel()
     if status == stepping.OK:
-        s.time += steps * settings.dt
+        s.time = time
         return None
     s.restore(before)
     return SimulationDivergedError(

@@ -9,6 +9,7 @@ stays in the scene.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from enum import StrEnum
 
@@ -39,6 +40,11 @@ class HeldRule:
         """The rule decides nothing by itself: always None."""
         return None
 
+    def decision_depth(self, radius: float) -> float:
+        """Past the opening's plane, the least depth at which the rule may decide a ball of
+        ``radius``: never (inf)."""
+        return math.inf
+
     def captured(self, decision: Reason | None, entered: bool, inside: bool) -> bool:
         """Caught: it ``entered`` through the opening and is ``inside`` the box."""
         return entered and inside
@@ -62,11 +68,16 @@ class LineRule:
         """The decision on a ball of ``radius`` at ``position`` (``entered``: it came in through
         the frame; ``from_front``: launched before the line); None while any of it is in front of
         the plane, or it is behind the line without having crossed it."""
-        if opening.depth(position) < radius:
+        if opening.depth(position) < self.decision_depth(radius):
             return None
         if entered:
             return Reason.CROSSED_LINE
         return Reason.OUT_OF_PLAY if from_front else None
+
+    def decision_depth(self, radius: float) -> float:
+        """Past the opening's plane, the least depth at which the rule may decide a ball of
+        ``radius``: its radius (the whole ball past the plane)."""
+        return radius
 
     def captured(self, decision: Reason | None, entered: bool, inside: bool) -> bool:
         """Caught: the rule decided a goal."""

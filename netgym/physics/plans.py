@@ -2,8 +2,9 @@
 
 A plan is a generator that holds all the decisions of a piece of simulation (a throw, the
 relaxation of the net) and yields typed requests: :class:`Integrate` (integrate this many
-steps), :class:`Relax` (relax for at most this many steps, until a rest test passes) or
-:class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
+steps), :class:`Watched` (integrate chunk after chunk until a throw's watch sees something it
+could decide), :class:`Relax` (relax for at most this many steps, until a rest test passes)
+or :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
 requests of a simulator's plan, one integration call per :class:`Integrate` (one per piece
 between frame instants when it films, with a :class:`~netgym.physics.frames.Film`), and throws
@@ -18,8 +19,9 @@ from typing import Any, Protocol, Union
 
 from netgym.physics.frames import Film
 
-from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, relax
+from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, integrate_watched, relax
 from netgym.physics.model import KernelModel, Settings
+from netgym.physics.watch import Watch
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
 
@@ -31,6 +33,17 @@ class Integrate:
     n_steps: int
     integrator: int
     dt: float
+
+
+@dataclass(frozen=True)
+class Watched:
+    """Request: integrate chunk after chunk of ``watch.chunk`` steps of ``dt`` with
+    ``integrator`` until the :class:`~netgym.physics.watch.Watch` sees something that could be
+    decided (not for a filmed plan: a film needs every chunk)."""
+
+    integrator: int
+    dt: float
+    watch: Watch
 
 
 @dataclass(frozen=True)
@@ -49,7 +62,7 @@ class Tick:
     """Request: nothing to integrate; the plan moved time itself (a moment to observe)."""
 
 
-Request = Union[Integrate, Relax, Tick]
+Request = Union[Integrate, Watched, Relax, Tick]
 Plan = Generator[Request, None, Any]
 """A simulation plan: yields :data:`Request` objects, returns its result."""
 
@@ -70,7 +83,8 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
 
     Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call
     (one per piece between the frame instants when ``observer`` is a
-    :class:`~netgym.physics.frames.Film`: :func:`_integrate_filmed`), each :class:`Relax`
+    :class:`~netgym.physics.frames.Film`: :func:`_integrate_filmed`), each :class:`Watched`
+    one :func:`~netgym.physics.integration.integrate_watched` call, each :class:`Relax`
     one :func:`~netgym.physics.integration.relax` call; the plan is then resumed, with the
     divergence error of that integration thrown into it if there was one. ``observer(sim)`` is
     called after every call carried out without error, for example to record frames.
@@ -88,6 +102,11 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
         if isinstance(request, Integrate):
             error = integrate(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                               workspace)
+        elif isinstance(request, Watched):
+            if isinstance(observer, Film):
+                raise TypeError("a filmed plan integrates chunk by chunk (Integrate requests), not Watched ones")
+            error = integrate_watched(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), workspace,
+                                      request.watch)
         elif isinstance(request, Relax):
             error = relax(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                           workspace, request.rest)

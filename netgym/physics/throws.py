@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
@@ -24,8 +24,9 @@ from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
 from netgym.physics import air, contacts, flight, reach, stepping
 from netgym.physics.outcomes import Reason
-from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick
-from netgym.physics.surroundings import still_since, survey
+from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, Watched
+from netgym.physics.surroundings import survey
+from netgym.physics.watch import RestWindow, Watch, near_check
 
 if TYPE_CHECKING:
     from netgym.physics.frames import Film
@@ -96,11 +97,10 @@ class Course:
     launched: float               # simulated time of the launch: the origin of the full simulation's step grid
     deadline: float               # the launch plus the time limit
     substeps: int                 # the simulator's substeps at the launch
-    budget: reach.Budget          # what the energy bound measures against (the potential energy at the launch)
     about: float                  # the ball's radius + the largest radius about the other bodies (a pole's, a ball's)
     from_front: bool              # launched in front of the opening's plane: it can go out of play
+    watch: Watch                  # what the checks after each chunk look at (the energy bound, the rest window)
     decision: Reason | None = None  # the capture rule's, once it decided
-    recent: list[tuple[float, np.ndarray]] = field(default_factory=list)  # (time, positions) of the last rest window
 
 
 class Throw:
@@ -172,15 +172,26 @@ class Throw:
             if not self.film.settling:
                 self.film.clock.restart(s.time)
             yield Tick()  # the launch
-        m, km = sim.model, sim.kernel_model
+        m = sim.model
         around = max(float(m.poles.radius.max(initial=0.0)), m.ball_radius if sim.n_balls > 1 else 0.0)
-        self.course = Course(launched=s.time, deadline=s.time + sim.config.simulation.time_limit,
-                             substeps=sim.substeps, budget=reach.Budget(
-                                 reach.potential_without_ball(s.x, s.v, s.inv_mass, self.ball.row, km.gravity,
-                                                              km.springs, km.spring_params),
-                                 sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind), km.gravity,
-                                 m.ball_radius, sim.opening.lowest_z),
-                             about=m.ball_radius + around, from_front=sim.opening.depth(s.x[self.ball.row]) <= 0.0)
+        deadline = s.time + sim.config.simulation.time_limit
+        self.course = Course(launched=s.time, deadline=deadline, substeps=sim.substeps, about=m.ball_radius + around,
+                             from_front=sim.opening.depth(s.x[self.ball.row]) <= 0.0,
+                             watch=self._watch(deadline, m.ball_radius + around))
+
+    def _watch(self, deadline: float, about: float) -> Watch:
+        """The :class:`~netgym.physics.watch.Watch` of a throw launched now, with the ball's
+        ``deadline`` and ``about`` (see :class:`Course`): its energy budget measured now."""
+        sim, row = self.sim, self.ball.row
+        s, m, km, cfg = sim.state, sim.model, sim.kernel_model, sim.config.simulation
+        budget = reach.Budget(reach.potential_without_ball(s.x, s.v, s.inv_mass, row, km.gravity, km.springs,
+                                                           km.spring_params),
+                              sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind), km.gravity,
+                              m.ball_radius, sim.opening.lowest_z)
+        rest = RestWindow.sized(s.x.shape[0], cfg.dt, TUNING.rest_window, TUNING.time_epsilon,
+                                2.0 * m.ball_radius + TUNING.rest_reach, cfg.rest_speed * TUNING.rest_window)
+        return Watch(row, deadline, max(1, round(CHUNK_SECONDS / cfg.dt)), about + TUNING.awake_margin,
+                     self.rule.decision_depth(m.ball_radius), TUNING.sleep_speed, budget, rest, np.empty(6))
 
     def _until_decided(self) -> Plan:
         """Simulate the ball until its outcome is decided; returns the :class:`Reason`.
@@ -207,14 +218,20 @@ class Throw:
 
     def _integrate_near(self) -> Plan:
         """Integrate everything for one chunk of CHUNK_SECONDS (less before the time limit; none
-        at it): the ball is near something, or this is the full simulation. Integration wakes
-        the scene; the chunk ends on the full simulation's step grid, as every flight does."""
-        sim = self.sim
+        at it): the ball is near something, or this is the full simulation. On the fast path,
+        unfilmed, chunk after chunk in one request, for as long as the checks after them see
+        nothing that could be decided (:class:`~netgym.physics.plans.Watched`): the decision
+        after it is the one after the last of those chunks. Integration wakes the scene; each
+        chunk ends on the full simulation's step grid, as every flight does."""
+        sim, watch = self.sim, self.course.watch
         dt = sim.config.simulation.dt
         left = round((self.course.deadline - sim.state.time) / dt)
         if left > 0:
             sim.awake = True
-            yield Integrate(min(max(1, round(CHUNK_SECONDS / dt)), left), sim.integrator, dt)
+            if self.fast and self.film is None:
+                yield Watched(sim.integrator, dt, watch)
+            else:
+                yield Integrate(min(watch.chunk, left), sim.integrator, dt)
 
     def _decide(self) -> Reason | None:
         """The decision after a piece of the throw, or None to go on: the capture rule's (the
@@ -236,12 +253,12 @@ class Throw:
         away, is at rest, or cannot reach the opening), or None; when nothing but the ball moves
         (slower than ``sleep_speed``) and it could fly clear for a step, the scene goes to sleep,
         so that the ball flies in closed form again."""
-        sim = self.sim
-        others, lo, hi = self._survey(TUNING.awake_margin)
-        self._remember_positions()
-        reason = self._decided(self._at_rest(), lo, hi)
-        if reason is None and others < TUNING.sleep_speed and self._flight_time() > 0.0:
-            sim.sleep(keep=self.ball.row)
+        s, km, watch = self.sim.state, self.sim.kernel_model, self.course.watch
+        others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs, km.spring_params,
+                                                     km.opening, km.poles, watch)
+        reason = self._decided(at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
+        if reason is None and others < watch.sleep_speed and self._flight_time() > 0.0:
+            self.sim.sleep(keep=self.ball.row)
         return reason
 
     def _result(self, reason: Reason) -> ThrowResult:
@@ -457,38 +474,16 @@ class Throw:
         sim.restore(kept)
 
     # ------------------------------------------------------------------ the fast path's decisions
-    def _remember_positions(self) -> None:
-        """Note every body's position now, and forget those the rest window no longer needs
-        (the oldest kept is the latest at least ``rest_window`` old)."""
-        s, recent = self.sim.state, self.course.recent
-        recent.append((s.time, s.x.copy()))
-        while len(recent) > 1 and recent[1][0] <= s.time - TUNING.rest_window + TUNING.time_epsilon:
-            recent.pop(0)
-
-    def _at_rest(self) -> bool:
-        """The ball and the bodies near it (centres within twice its radius plus ``rest_reach``
-        of its centre) moved no coordinate more than ``rest_speed`` x ``rest_window`` between any
-        check of the last rest window (the course's ``recent``, oldest first, covering it) and
-        now. Positions, not velocities: a light net under a resting ball keeps a velocity jitter
-        of the order of its acceleration x dt (2.8 cm/s on the goal's roof at 0.5 ms) while
-        nothing moves."""
-        s, m, recent = self.sim.state, self.sim.model, self.course.recent
-        if s.time - recent[0][0] < TUNING.rest_window - TUNING.time_epsilon:
-            return False
-        near = 2.0 * m.ball_radius + TUNING.rest_reach
-        bound = self.sim.config.simulation.rest_speed * TUNING.rest_window
-        return all(still_since(s.x, x, self.ball.row, near, bound) for _, x in recent[:-1])
-
-    def _decided(self, at_rest: bool, lo: np.ndarray, hi: np.ndarray) -> Reason | None:
-        """The reason the throw's outcome is decided now, or None (``lo``, ``hi``: the region
-        from :meth:`_survey` with ``awake_margin``). The energy bound counts, besides the energy
-        free now, all the wind could still feed the balls before the deadline."""
-        s, km = self.sim.state, self.sim.kernel_model
+    def _decided(self, at_rest: bool, unreachable: bool, lo: np.ndarray, hi: np.ndarray) -> Reason | None:
+        """The reason the throw's outcome is decided now, or None, from the check after a chunk
+        (:func:`~netgym.physics.watch.near_check`): the ball flies away (it cannot come back into
+        the box ``lo``..``hi`` around everything else), it is ``at_rest``, or it can no longer
+        reach the opening (``unreachable``: the energy bound, which counts, besides the energy
+        free now, all the wind could still feed the balls before the deadline)."""
         if self._never_enters(lo, hi, math.inf):
             return Reason.FLIES_AWAY
         if at_rest:
             return Reason.AT_REST
-        if reach.out_of_reach(s.x, s.v, s.inv_mass, self.ball.row, km.springs, km.spring_params, km.opening,
-                              self.course.budget, self.course.deadline - s.time):
+        if unreachable:
             return Reason.CANNOT_REACH_OPENING
         return None
