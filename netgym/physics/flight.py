@@ -13,6 +13,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from netgym.physics.jit import kernel
+
 _MAX_ARCS = 200
 STILL_SPEED = 1e-9  # m/s: a ball sliding slower than this on the ground lies still
 
@@ -68,6 +70,7 @@ def _arc_entry(p: np.ndarray, v: np.ndarray, g: float, lo: np.ndarray, hi: np.nd
     return min((t for t, _ in times), default=None)
 
 
+@kernel
 def ground_time(p: np.ndarray, v: np.ndarray, ground: Ground) -> float:
     """Time until the ball's lowest point reaches the ground (inf if it never does)."""
     height = p[2] - ground.radius

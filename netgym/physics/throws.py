@@ -22,7 +22,7 @@ import numpy as np
 
 from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
-from netgym.physics import air, contacts, flight, reach, stepping
+from netgym.physics import air, approach, contacts, flight, reach, stepping
 from netgym.physics.outcomes import Reason
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, Watched
 from netgym.physics.surroundings import survey
@@ -190,8 +190,9 @@ class Throw:
                               m.ball_radius, sim.opening.lowest_z)
         rest = RestWindow.sized(s.x.shape[0], cfg.dt, TUNING.rest_window, TUNING.time_epsilon,
                                 2.0 * m.ball_radius + TUNING.rest_reach, cfg.rest_speed * TUNING.rest_window)
-        return Watch(row, deadline, max(1, round(CHUNK_SECONDS / cfg.dt)), about + TUNING.awake_margin,
-                     self.rule.decision_depth(m.ball_radius), TUNING.sleep_speed, budget, rest, np.empty(6))
+        return Watch(row, s.time, deadline, cfg.dt, max(1, round(CHUNK_SECONDS / cfg.dt)), TUNING.clearance,
+                     about + TUNING.awake_margin, self.rule.decision_depth(m.ball_radius), TUNING.sleep_speed, budget,
+                     rest, np.empty(6))
 
     def _until_decided(self) -> Plan:
         """Simulate the ball until its outcome is decided; returns the :class:`Reason`.
@@ -310,7 +311,10 @@ class Throw:
                 reason = self._flown_to()
                 if reason is not None:
                     return reason
+        box, km = np.concatenate((lo, hi)), self.sim.kernel_model
         while True:
+            if parabola and self.film is None:  # the pieces that certainly end undecided, in one kernel call
+                s.time = approach.approach(s.x, s.v, s.entered, km, self.ground, course.watch, box, s.time)
             if self._never_enters(lo, hi, course.deadline - s.time):  # it left the box, for good
                 return Reason.FLIES_AWAY
             if parabola and flight.lies_still(s.x[row], s.v[row], self.ground):
@@ -396,9 +400,7 @@ class Throw:
         """The longest flight of at most ``tau`` from now that ends on the step grid of the full
         simulation (the launch plus whole steps of the scene's dt), or 0.0: where the fast path
         integrates, it then takes the steps the full simulation takes there."""
-        dt, now, launched = self.sim.config.simulation.dt, self.sim.state.time, self.course.launched
-        steps = math.floor((now + tau - launched) / dt + 1e-9)
-        return max(0.0, launched + steps * dt - now)
+        return approach.on_step_grid(self.sim.state.time, tau, self.course.launched, self.sim.config.simulation.dt)
 
     def _clearance(self) -> float:
         """Distance the ball can travel before it could touch the net, a pole or another ball
@@ -431,14 +433,13 @@ class Throw:
     def _safe_time(self, gap: float) -> float:
         """A time within which the ball cannot travel ``gap``."""
         m, v = self.sim.model, self.sim.state.v[self.ball.row]
-        speed = math.sqrt(v.dot(v))  # np.linalg.norm's own sum, without its overhead
+        speed = approach.speed(v)
         if m.ball_drag == 0.0:
-            g = abs(m.gravity)
-        else:  # bound the acceleration over at most air_piece, with the speed it could gain
-            g0 = air.max_acceleration(speed, m.gravity, m.ball_drag, m.wind)
-            g = air.max_acceleration(speed + g0 * TUNING.air_piece, m.gravity, m.ball_drag, m.wind)
-        tau = gap / speed if g == 0.0 else (-speed + math.sqrt(speed * speed + 4.0 * g * gap)) / (2.0 * g)
-        return tau if m.ball_drag == 0.0 else min(tau, TUNING.air_piece)
+            return approach.travel_time(speed, abs(m.gravity), gap)
+        # bound the acceleration over at most air_piece, with the speed it could gain
+        g0 = air.max_acceleration(speed, m.gravity, m.ball_drag, m.wind)
+        g = air.max_acceleration(speed + g0 * TUNING.air_piece, m.gravity, m.ball_drag, m.wind)
+        return min(approach.travel_time(speed, g, gap), TUNING.air_piece)
 
     # ------------------------------------------------------------------ filming
     def _film_flight(self, x: np.ndarray, v: np.ndarray, t: float, end: float) -> Plan:

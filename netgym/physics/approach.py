@@ -1,0 +1,89 @@
+"""The ball's approach to the sleeping scene in closed form, in numba: the pieces of flight of the
+fast path (see :meth:`~netgym.physics.throws.Throw._fly_clear`) that nothing can decide.
+
+A piece flies the ball, held clear of everything by its clearance, for the longest time it
+cannot travel that far, to the full simulation's step grid. :func:`approach` flies piece after
+piece in one kernel call while each certainly ends undecided (the ball stays inside the box
+around the scene, off the ground, short of the capture rule's depth and of the time limit),
+and hands back to the throw before the first piece that might not; the throw flies that one
+itself. The pieces are those the throw would fly, with the same arithmetic.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from netgym.physics.contacts import clearance
+from netgym.physics.flight import ground_time
+from netgym.physics.jit import kernel
+from netgym.physics.stepping import update_entered
+
+
+@kernel
+def speed(v):
+    """Length of the velocity ``v`` (3,), summed in coordinate order (as every piece of flight
+    measures it, whatever the machine's BLAS)."""
+    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+
+
+@kernel
+def travel_time(speed, acceleration, gap):
+    """A time within which a body at ``speed``, accelerated by at most ``acceleration``, cannot
+    travel ``gap``."""
+    if acceleration == 0.0:
+        return gap / speed
+    return (-speed + math.sqrt(speed * speed + 4.0 * acceleration * gap)) / (2.0 * acceleration)
+
+
+@kernel
+def on_step_grid(now, tau, launched, dt):
+    """The longest flight of at most ``tau`` from ``now`` that ends on the step grid
+    ``launched`` + whole steps of ``dt``, or 0.0."""
+    steps = math.floor((now + tau - launched) / dt + 1e-9)
+    return max(0.0, launched + steps * dt - now)
+
+
+@kernel
+def approach(x, v, entered, model, ground, watch, box, time):
+    """Fly the ball of ``watch.row`` from ``time``, piece after piece, while each certainly ends
+    undecided; returns the time reached (``x``, ``v`` and ``entered`` moved on in place).
+
+    A piece starts only while the ball lies inside ``box`` (6,: min x, y, z, max x, y, z;
+    outside it, it may never come back), is not sliding on the ground, and is farther than
+    ``watch.clearance`` from the net, the poles and the other balls (all held still: the
+    scene sleeps); it lasts the longest time within which the ball cannot travel that far
+    (gravity bounding its acceleration) and ends on the step grid from ``watch.launched``. It
+    is flown only if the ball meets no ground, stops short of the capture rule's depth and the
+    deadline is more than half a step after it; its crossing of the opening is booked along
+    its chord.
+    """
+    row, n_net, radius, opening = watch.row, model.n_net, model.ball_radius, model.opening
+    before = np.empty((x.shape[0] - n_net, 3))
+    t = time
+    while True:
+        p, u = x[row], v[row]
+        for c in range(3):
+            if not box[c] <= p[c] <= box[c + 3]:
+                return t
+        if p[2] <= radius + 1e-12 and abs(u[2]) <= 1e-12:
+            return t
+        gap = clearance(x, n_net, row, radius, model.segments, model.poles)
+        if gap <= watch.clearance:
+            return t
+        bound = travel_time(speed(u), abs(model.gravity), gap)
+        tau = on_step_grid(t, min(bound, watch.deadline - t), watch.launched, watch.dt)
+        if tau <= 0.0 or ground_time(p, u, ground) < tau or watch.deadline - (t + tau) < 0.5 * watch.dt:
+            return t
+        end = (p[0] + u[0] * tau, p[1] + u[1] * tau, p[2] + u[2] * tau + 0.5 * model.gravity * tau * tau)
+        if -opening.sign * (end[opening.axis] - opening.plane) >= watch.rule_depth:
+            return t
+        for b in range(before.shape[0]):
+            for c in range(3):
+                before[b, c] = x[n_net + b, c]
+        for c in range(3):
+            p[c] = end[c]
+        u[2] += model.gravity * tau
+        update_entered(x, before, n_net, entered, opening)
+        t = t + tau
