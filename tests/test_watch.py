@@ -99,3 +99,17 @@ def test_a_rest_window_checked_more_often_than_once_a_step_says_so() -> None:
     with pytest.raises(RuntimeError, match="more than once a step"):
         for k in range(rest.times.shape[0] + 1):
             remember(rest, 1e-4 * k, x)
+
+
+def test_a_check_a_rounding_error_after_the_last_is_the_same_instant() -> None:
+    """At implicit Euler's 10 ms a ball is flown to the step grid from a rounding error off it
+    and checked again 4e-16 s after the last check, every other chunk: the rest window takes
+    that check for the same instant (it filled up otherwise, and the throw stopped)."""
+    position, velocity = sample_throws("basket", 90, seed=99)[89]
+    sim = Simulator("basket", {"simulation.integrator": "implicit_euler", "simulation.dt": 0.01}, check_stability=False)
+    result = sim.throw(position, velocity)
+    assert result.captured and result.reason == "cannot_reach_opening"
+    rest = _window()
+    remember(rest, 0.14, np.zeros((2, 3)))
+    remember(rest, 0.14 + 4.4e-16, np.ones((2, 3)))
+    assert rest.ring[1] == 1 and rest.positions[rest.ring[0]][0, 0] == 1.0

@@ -173,11 +173,11 @@ class Throw:
                 self.film.clock.restart(s.time)
             yield Tick()  # the launch
         m = sim.model
-        around = max(float(m.poles.radius.max(initial=0.0)), m.ball_radius if sim.n_balls > 1 else 0.0)
+        about = m.ball_radius + max(float(m.poles.radius.max(initial=0.0)), m.ball_radius if sim.n_balls > 1 else 0.0)
         deadline = s.time + sim.config.simulation.time_limit
-        self.course = Course(launched=s.time, deadline=deadline, substeps=sim.substeps, about=m.ball_radius + around,
+        self.course = Course(launched=s.time, deadline=deadline, substeps=sim.substeps, about=about,
                              from_front=sim.opening.depth(s.x[self.ball.row]) <= 0.0,
-                             watch=self._watch(deadline, m.ball_radius + around))
+                             watch=self._watch(deadline, about))
 
     def _watch(self, deadline: float, about: float) -> Watch:
         """The :class:`~netgym.physics.watch.Watch` of a throw launched now, with the ball's

@@ -14,6 +14,7 @@ every chunk.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -44,9 +45,9 @@ class RestWindow(NamedTuple):
     def sized(cls, n_bodies: int, dt: float, window: float, epsilon: float, near: float,
               bound: float) -> "RestWindow":
         """An empty window for states of ``n_bodies``, checked at most once a step of ``dt``
-        (a throw checks after whole steps): room for the checks within ``window`` and the
-        latest one before it."""
-        capacity = int(window / dt) + 3
+        (a throw checks after whole steps; checks closer than ``epsilon`` are one): room for the
+        checks within ``window`` and the latest one before it."""
+        capacity = math.ceil(window / dt) + 3
         return cls(np.empty(capacity), np.empty((capacity, n_bodies, 3)), np.zeros(2, dtype=np.int64),
                    float(window), float(epsilon), float(near), float(bound))
 
@@ -78,11 +79,12 @@ class Watch(NamedTuple):
 @kernel
 def remember(rest, time, x):
     """Note the positions ``x`` at ``time`` in the :class:`RestWindow` (in place of the newest
-    if that is of the same instant: a check made again on the same state) and forget those it
-    no longer needs: the oldest kept is the latest at least ``window`` old."""
+    if that is of the same instant, within ``epsilon``: a check made again on the same state,
+    or after a flight of a rounding error to the step grid) and forget those it no longer
+    needs: the oldest kept is the latest at least ``window`` old."""
     capacity = rest.times.shape[0]
     first, count = rest.ring[0], rest.ring[1]
-    if count > 0 and rest.times[(first + count - 1) % capacity] == time:
+    if count > 0 and time - rest.times[(first + count - 1) % capacity] < rest.epsilon:
         count -= 1
     if count == capacity:
         raise RuntimeError("the rest window is full: a throw checked more than once a step")
