@@ -53,14 +53,14 @@ class RestWindow(NamedTuple):
 
 
 class Watch(NamedTuple):
-    """What a throw's kernels watch: the ball's ``row``, its ``launched`` and ``deadline`` times
-    (s), the scene's ``dt`` (s), ``chunk`` (steps between two checks), ``clearance`` (m: closer
-    than this to anything, the ball is simulated, not flown), ``grow`` (m: the box around
-    everything but the ball grows by this),
-    ``rule_depth`` (m: past the opening's plane from this depth, the capture rule may decide;
-    inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go to
-    sleep), its :class:`~netgym.physics.reach.Budget`, its :class:`RestWindow` and ``box`` (6,),
-    the grown box of the last check (min x, y, z, max x, y, z)."""
+    """What a throw's kernels (these and :func:`~netgym.physics.approach.approach`) know of it:
+    the ball's ``row``, its ``launched`` and ``deadline`` times (s), the scene's ``dt`` (s),
+    ``chunk`` (steps between two checks), ``clearance`` (m: closer than this to anything, the
+    ball is simulated, not flown), ``grow`` (m: the box around everything but the ball grows by
+    this), ``rule_depth`` (m: past the opening's plane from this depth, the capture rule may
+    decide; inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go
+    to sleep), its :class:`~netgym.physics.reach.Budget`, its :class:`RestWindow` and ``box``
+    (6,), the grown box of the last check (min x, y, z, max x, y, z)."""
 
     row: int
     launched: float
