@@ -18,6 +18,7 @@ import numpy as np
 from netgym.physics.contacts import clearance
 from netgym.physics.flight import ground_time
 from netgym.physics.jit import kernel
+from netgym.physics.opening import opening_depth
 from netgym.physics.stepping import update_entered
 
 
@@ -77,7 +78,7 @@ def approach(x, v, entered, model, ground, watch, box, time):
         if tau <= 0.0 or ground_time(p, u, ground) < tau or watch.deadline - (t + tau) < 0.5 * watch.dt:
             return t
         end = (p[0] + u[0] * tau, p[1] + u[1] * tau, p[2] + u[2] * tau + 0.5 * model.gravity * tau * tau)
-        if -opening.sign * (end[opening.axis] - opening.plane) >= watch.rule_depth:
+        if opening_depth(opening, end) >= watch.rule_depth:
             return t
         for b in range(before.shape[0]):
             for c in range(3):

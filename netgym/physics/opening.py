@@ -105,6 +105,13 @@ class Opening:
 
 
 @inline_kernel
+def opening_depth(opening, point):
+    """How far ``point`` (3 coordinates) lies past the plane of an :class:`OpeningRecord` on
+    the inner side (negative outside), as :meth:`Opening.depth`."""
+    return -opening.sign * (point[opening.axis] - opening.plane)
+
+
+@inline_kernel
 def opening_distance(opening, point):
     """Distance from ``point`` (3,) to the rectangle of an :class:`OpeningRecord`."""
     total = 0.0

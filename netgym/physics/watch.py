@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.physics.jit import kernel
+from netgym.physics.opening import opening_depth
 from netgym.physics.reach import Budget, out_of_reach
 from netgym.physics.rows import copy_rows
 from netgym.physics.stepping import DIVERGED, OK, advance
@@ -154,8 +155,7 @@ def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, 
         if advance(x, v, inv_mass, entered, model, settings, n, scratch, stats) != OK:
             return DIVERGED, t
         t += n * dt
-        depth = -opening.sign * (x[row, opening.axis] - opening.plane)
-        if watch.deadline - t < 0.5 * dt or depth >= watch.rule_depth:
+        if watch.deadline - t < 0.5 * dt or opening_depth(opening, x[row]) >= watch.rule_depth:
             return OK, t
         others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model.springs, model.spring_params,
                                                         opening, model.poles, watch)
