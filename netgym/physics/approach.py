@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from netgym.physics.contacts import clearance
-from netgym.physics.flight import ground_time
+from netgym.physics.flight import ground_time, sliding
 from netgym.physics.jit import kernel
 from netgym.physics.opening import opening_depth
 from netgym.physics.stepping import update_entered
@@ -68,7 +68,7 @@ def approach(x, v, entered, model, ground, watch, box, time):
         for c in range(3):
             if not box[c] <= p[c] <= box[c + 3]:
                 return t
-        if p[2] <= radius + 1e-12 and abs(u[2]) <= 1e-12:
+        if sliding(p, u, ground):
             return t
         gap = clearance(x, n_net, row, radius, model.segments, model.poles)
         if gap <= watch.clearance:

@@ -93,13 +93,15 @@ def _bounce(v: np.ndarray, ground: Ground) -> np.ndarray:
     return out
 
 
-def _sliding(p: np.ndarray, v: np.ndarray, ground: Ground) -> bool:
+@kernel
+def sliding(p: np.ndarray, v: np.ndarray, ground: Ground) -> bool:
+    """The ball lies on the ground with no vertical speed (to rounding): it slides or lies still."""
     return p[2] <= ground.radius + 1e-12 and abs(v[2]) <= 1e-12
 
 
 def lies_still(p: np.ndarray, v: np.ndarray, ground: Ground) -> bool:
     """The ball lies on the ground and has stopped sliding (to rounding: under 1 nm/s)."""
-    return _sliding(p, v, ground) and math.hypot(v[0], v[1]) < STILL_SPEED
+    return sliding(p, v, ground) and math.hypot(v[0], v[1]) < STILL_SPEED
 
 
 def _slide(p: np.ndarray, v: np.ndarray, tau: float, ground: Ground) -> tuple[np.ndarray, np.ndarray]:
@@ -118,7 +120,7 @@ def advance(p: np.ndarray, v: np.ndarray, tau: float, ground: Ground) -> tuple[n
     """Position and velocity of the ball after ``tau`` seconds."""
     p, v = np.array(p, dtype=float), np.array(v, dtype=float)
     for _ in range(_MAX_ARCS):
-        if _sliding(p, v, ground):
+        if sliding(p, v, ground):
             return _slide(p, v, tau, ground)
         t_ground = ground_time(p, v, ground)
         t = min(tau, t_ground)
@@ -143,7 +145,7 @@ def entry_time(p: np.ndarray, v: np.ndarray, lo: np.ndarray, hi: np.ndarray, gro
     for _ in range(_MAX_ARCS):
         if elapsed > horizon:
             return None
-        if _sliding(p, v, ground):
+        if sliding(p, v, ground):
             return _slide_entry(p, v, lo, hi, ground, elapsed, horizon)
         t_ground = min(ground_time(p, v, ground), horizon - elapsed)
         hit = _arc_entry(p, v, ground.gravity, lo, hi, t_ground)
