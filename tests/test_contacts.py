@@ -12,6 +12,7 @@ from netgym.physics import contacts
 from netgym.physics.kinds import Contact
 from netgym.physics.model import KernelModel, index_segments
 from netgym.physics.opening import Opening
+from netgym.physics.springs import Springs
 
 RADIUS = 0.3           # m, ball radius
 THRESHOLD = 0.2        # m/s, restitution threshold: slower approaches do not bounce
@@ -31,7 +32,7 @@ def resolve(x: np.ndarray, v: np.ndarray, inv_mass: np.ndarray, n_net: int, segm
     net = x[:n_net]
     box = np.concatenate([net.min(axis=0), net.max(axis=0)]) if n_net else np.array([np.inf] * 3 + [-np.inf] * 3)
     nowhere = Opening(2, 1, 100.0, (0, 1), (-1.0, -1.0), (1.0, 1.0))
-    model = KernelModel(n_net=n_net, springs=np.zeros((0, 2), dtype=np.int64), spring_params=np.zeros((0, 3)),
+    model = KernelModel(n_net=n_net, springs=Springs.of(np.zeros((0, 2)), np.zeros((0, 3)), n_net),
                         segments=ordered, segment_start=segment_start, poles=contacts.Poles.none(),
                         materials=contacts.Materials.of_table(coef), restitution_threshold=THRESHOLD, gravity=0.0,
                         drag=0.0, ball_radius=RADIUS, opening=nowhere.kernel_record(), ball_drag=0.0, wind=np.zeros(3))

@@ -61,7 +61,7 @@ def test_settings_that_name_no_integrator_are_a_clear_error(basket: Simulator) -
     plain = Settings(Integrator.IMEX_EULER, 1e-3, 0.25, 1e-8, 100, 1e3)
     with pytest.raises(TypingError, match="smooth_step takes settings of one integrator"):
         stepping.advance(s.x.copy(), s.v.copy(), s.inv_mass, s.entered, model, plain, 1,
-                         Scratch.sized(len(s.x), len(model.springs)), stepping.new_counters())
+                         Scratch.sized(len(s.x), len(model.springs.pairs)), stepping.new_counters())
 
 
 def test_the_notice_is_written_once_at_the_first_compilation_of_the_package(monkeypatch) -> None:

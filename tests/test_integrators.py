@@ -16,32 +16,33 @@ from netgym.physics import integrators
 from netgym.physics.integrators import Scratch
 from netgym.physics.kinds import Integrator
 from netgym.physics.model import Settings
+from netgym.physics.springs import Springs
 
 OMEGA = 2.0 * math.pi   # rad/s: a period of 1 s
 REST = 1.0              # m, the spring's rest length
 AMPLITUDE = 0.1         # m
-SPRINGS = np.array([[1, 0]], dtype=np.int64)                 # the particle (row 1) on the anchor (row 0)
-PARAMS = np.array([[REST, OMEGA ** 2, 0.0]])                 # rest length, ks (for 1 kg), no damper
+SPRINGS = Springs.of([[1, 0]], [[REST, OMEGA ** 2, 0.0]], 2)  # the particle (row 1) on the anchor (row 0):
+                                                               # rest length, ks (for 1 kg), no damper
 INV_MASS = np.array([0.0, 1.0])
 
 Step = Callable[[np.ndarray, np.ndarray, float, Scratch], None]
 
 
 def euler(symplectic: bool) -> Step:
-    return lambda x, v, h, s: integrators.step_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h, s.work, symplectic)
+    return lambda x, v, h, s: integrators.step_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, h, s.work, symplectic)
 
 
 def rk4(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
-    integrators.step_rk4(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h, s.work)
+    integrators.step_rk4(x, v, INV_MASS, 0.0, 0.0, SPRINGS, h, s.work)
 
 
 def implicit_euler(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
-    integrators.step_implicit_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h,
+    integrators.step_implicit_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, h,
                                     Settings.make(Integrator.IMPLICIT_EULER, h, 0.25, 1e-14, 50, 1e3), s)
 
 
 def imex_euler(x: np.ndarray, v: np.ndarray, h: float, s: Scratch) -> None:
-    integrators.step_imex_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, PARAMS, h, s)
+    integrators.step_imex_euler(x, v, INV_MASS, 0.0, 0.0, SPRINGS, h, s)
 
 
 METHODS = {"explicit_euler": euler(False), "symplectic_euler": euler(True), "rk4": rk4,

@@ -161,28 +161,28 @@ def test_the_kernels_wavefront_order_of_springs_gives_bitwise_the_same_steps(int
     from netgym.physics.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler
     from netgym.physics.kinds import Integrator
     from netgym.physics.model import Model, Settings
+    from netgym.physics.springs import kernel_indices
 
     model = Model.from_config(load_scene("basket"))
-    ordered = model.kernel
-    assert not np.array_equal(ordered.springs, model.springs)
-    assert sorted(map(tuple, ordered.springs.tolist())) == sorted(map(tuple, model.springs.tolist()))
+    ordered = model.kernel.springs
+    in_memory_order = ordered._replace(pairs=kernel_indices(model.springs), params=model.spring_params)
+    assert not np.array_equal(ordered.pairs, model.springs)
+    assert sorted(map(tuple, ordered.pairs.tolist())) == sorted(map(tuple, model.springs.tolist()))
     rng = np.random.default_rng(3)
     free = (model.net_inv_mass > 0)[:, None]
     x0 = model.geometry.positions + rng.normal(0.0, 0.02, model.geometry.positions.shape) * free
     v0 = rng.normal(0.0, 0.5, x0.shape) * free
     results = []
-    for springs, params in ((model.springs, model.spring_params), (ordered.springs, ordered.spring_params)):
+    for springs in (in_memory_order, ordered):
         x, v = x0.copy(), v0.copy()
-        scratch = Scratch.sized(len(x), len(springs))
+        scratch = Scratch.sized(len(x), len(springs.pairs))
         for _ in range(5):
             if integrator == "imex_euler":
-                step_imex_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 0.01, scratch)
+                step_imex_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, 0.01, scratch)
             elif integrator == "symplectic_euler":
-                step_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 5e-4, scratch.work,
-                           True)
+                step_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, 5e-4, scratch.work, True)
             else:
-                step_implicit_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, params, 0.01,
-                                    Settings.make(Integrator.IMPLICIT_EULER, 0.01, 0.25, 1e-8, 200, 1e3),
-                                    scratch)
+                step_implicit_euler(x, v, model.net_inv_mass, model.gravity, model.drag, springs, 0.01,
+                                    Settings.make(Integrator.IMPLICIT_EULER, 0.01, 0.25, 1e-8, 200, 1e3), scratch)
         results.append((x, v))
     assert np.array_equal(results[0][0], results[1][0]) and np.array_equal(results[0][1], results[1][1])

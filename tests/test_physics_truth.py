@@ -16,6 +16,7 @@ from netgym.physics.kinds import Contact, Integrator
 from netgym.physics.model import KernelModel, Settings
 from netgym.physics.opening import Opening
 from netgym.physics.simulator import Simulator
+from netgym.physics.springs import Springs
 
 # a small net hung high above the ground: it swings under gravity without touching anything
 LIFTED = {"net.particles": [5, 5, 6], "net.lower": [-1.0, -1.0, 5.0], "net.upper": [1.0, 1.0, 7.5]}
@@ -68,7 +69,7 @@ def _oscillator(integrator: int, dt: float, t_end: float, ks: float, kd: float, 
     params = np.array([[rest, ks, kd]])
     far_away = Opening(axis=2, sign=1, plane=100.0, tangent_axes=(0, 1), tangent_lower=(-1.0, -1.0),
                        tangent_upper=(1.0, 1.0))
-    model = KernelModel(n_net=2, springs=springs, spring_params=params, segments=np.zeros((0, 2), dtype=np.int64),
+    model = KernelModel(n_net=2, springs=Springs.of(springs, params, 2), segments=np.zeros((0, 2), dtype=np.int64),
                         segment_start=np.zeros(3, dtype=np.int64), poles=Poles.none(),
                         materials=Materials.of_table(np.zeros((len(Contact), 2))), restitution_threshold=0.0,
                         gravity=0.0, drag=0.0, ball_radius=0.1, opening=far_away.kernel_record(), ball_drag=0.0,
@@ -175,7 +176,8 @@ def test_imex_dampers_only_remove_kinetic_energy_and_keep_momentum() -> None:
         dt = 10.0 ** rng.uniform(-4, -1)
         kinetic = 0.5 * np.sum(v * v / inv_mass[:, None])
         momentum = np.sum(v / inv_mass[:, None], axis=0)
-        step_imex_euler(x, v, inv_mass, 0.0, 0.0, springs, params, dt, Scratch.sized(len(x), len(springs)))
+        step_imex_euler(x, v, inv_mass, 0.0, 0.0, Springs.of(springs, params, len(x)), dt,
+                        Scratch.sized(len(x), len(springs)))
         assert 0.5 * np.sum(v * v / inv_mass[:, None]) < kinetic
         assert np.allclose(np.sum(v / inv_mass[:, None], axis=0), momentum, atol=1e-10)
 
@@ -192,17 +194,18 @@ def test_imex_shares_are_computed_again_for_another_step_and_after_implicit_eule
     inv_mass = rng.uniform(0.5, 5.0, len(x))
     params = np.column_stack([np.ones(len(springs)), rng.uniform(10.0, 100.0, len(springs)),
                               rng.uniform(1.0, 50.0, len(springs))])
+    record = Springs.of(springs, params, len(x))
 
     def imex(scratch: Scratch, dt: float) -> tuple[np.ndarray, np.ndarray]:
         xs, vs = x.copy(), v.copy()
-        step_imex_euler(xs, vs, inv_mass, -9.81, 0.0, springs, params, dt, scratch)
+        step_imex_euler(xs, vs, inv_mass, -9.81, 0.0, record, dt, scratch)
         return xs, vs
 
     fresh = imex(Scratch.sized(len(x), len(springs)), 2e-3)
     used = Scratch.sized(len(x), len(springs))
     imex(used, 5e-3)
     assert all(np.array_equal(a, b) for a, b in zip(imex(used, 2e-3), fresh))
-    step_implicit_euler(x.copy(), v.copy(), inv_mass, -9.81, 0.0, springs, params, 2e-3,
+    step_implicit_euler(x.copy(), v.copy(), inv_mass, -9.81, 0.0, record, 2e-3,
                         Settings.make(Integrator.IMPLICIT_EULER, 2e-3, 0.25, 1e-8, 200, 1e3), used)
     assert all(np.array_equal(a, b) for a, b in zip(imex(used, 2e-3), fresh))
 
@@ -215,7 +218,7 @@ def test_imex_damper_of_one_spring_is_two_backward_euler_half_steps() -> None:
     inv_mass, kd, dt = np.array([2.0, 0.5]), 40.0, 0.01
     axis = x[1] - x[0]
     before = np.dot(v[1] - v[0], axis)
-    step_imex_euler(x, v, inv_mass, 0.0, 0.0, np.array([[0, 1]]), np.array([[1.0, 0.0, kd]]), dt, Scratch.sized(2, 1))
+    step_imex_euler(x, v, inv_mass, 0.0, 0.0, Springs.of([[0, 1]], [[1.0, 0.0, kd]], 2), dt, Scratch.sized(2, 1))
     assert np.dot(v[1] - v[0], axis) == pytest.approx(before / (1.0 + 0.5 * dt * kd * inv_mass.sum()) ** 2, rel=1e-12)
 
 
@@ -250,7 +253,7 @@ def _spectral_radius_of_the_imex_step(x, inv_mass, springs, params, dt) -> float
         xs, vs = x.copy(), np.zeros_like(x)
         xs[1] += state[:3]
         vs[1] = state[3:]
-        step_imex_euler(xs, vs, inv_mass, 0.0, 0.0, springs, params, dt, Scratch.sized(2, 1))
+        step_imex_euler(xs, vs, inv_mass, 0.0, 0.0, Springs.of(springs, params, 2), dt, Scratch.sized(2, 1))
         return np.concatenate([xs[1] - x[1], vs[1]])
 
     eps = 1e-7

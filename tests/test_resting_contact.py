@@ -15,6 +15,7 @@ from netgym.physics.kinds import Contact, Integrator
 from netgym.physics.model import KernelModel, Settings, index_segments
 from netgym.physics.opening import Opening
 from netgym.physics.simulator import Simulator
+from netgym.physics.springs import Springs
 
 
 @pytest.mark.parametrize(("integrator", "dt"), [("imex_euler", 5e-4), ("imex_euler", 1e-3), ("imex_euler", 2e-3),
@@ -72,7 +73,7 @@ def _slide(angle: float, friction: float, seconds: float, dt: float = 1e-3) -> f
     contact[Contact.BALL_NET] = (0.0, friction)
     nowhere = Opening(2, 1, 100.0, (0, 1), (-1.0, -1.0), (1.0, 1.0))
     segments, segment_start = index_segments(segments, len(points))
-    model = KernelModel(n_net=len(points), springs=np.zeros((0, 2), dtype=np.int64), spring_params=np.zeros((0, 3)),
+    model = KernelModel(n_net=len(points), springs=Springs.of(np.zeros((0, 2)), np.zeros((0, 3)), len(points)),
                         segments=segments, segment_start=segment_start, poles=Poles.none(),
                         materials=Materials.of_table(contact),
                         restitution_threshold=0.2,

@@ -215,7 +215,7 @@ SUBSTEPS_TEXT = (
     "particle's speed computed once per step rather than once per ball where the search runs.")
 
 WAVEFRONT_TEXT = (
-    "- The kernels loop over the springs in wavefront order (`netgym.physics.model.wavefront_order`): each "
+    "- The kernels loop over the springs in wavefront order (`netgym.physics.springs.wavefront_order`): each "
     "spring is one wavefront past the latest of the springs before it at either end, and the wavefronts come "
     "one after the other. Springs that share a particle keep their order, so every particle sees the same "
     "updates in the same order and the results are bitwise those of memory order (the golden episodes pass "

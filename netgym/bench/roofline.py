@@ -104,8 +104,7 @@ def sqrt_div_rate(repeats: int = 20) -> float:
 def spring_pass_arguments(scene: str = "basket") -> tuple[np.ndarray, ...]:
     """The arguments of :func:`~netgym.physics.forces.spring_forces` for ``scene``'s net at rest."""
     sim = Simulator(scene)
-    m, state = sim.kernel_model, sim.state
-    return state.x, state.v, m.springs, m.spring_params, np.zeros_like(state.x)
+    return sim.state.x, sim.state.v, sim.kernel_model.springs, np.zeros_like(sim.state.x)
 
 
 def spring_pass_seconds(arguments: tuple[np.ndarray, ...], repeats: int = 200) -> float:
@@ -133,7 +132,7 @@ def roofline(scene: str = "basket", quick: bool = False) -> dict[str, float]:
     (ns); the scene's arrays fit in the L2 cache, so the L2 bandwidth is the memory roof."""
     repeats = 3 if quick else 20
     arguments = spring_pass_arguments(scene)
-    n_springs = int(arguments[2].shape[0])
+    n_springs = int(arguments[2].pairs.shape[0])
     seconds = spring_pass_seconds(arguments, 20 if quick else 200)
     l2 = bandwidth(256 * 1024, repeats)
     dram = bandwidth((16 if quick else 768) * 1024 * 1024, 2 if quick else 5)

@@ -11,8 +11,6 @@ import math
 
 from netgym.physics.jit import inline_kernel, kernel
 
-from netgym.physics.rows import add_pair_force
-
 
 @inline_kernel
 def spring_axis(x, i, j):
@@ -25,26 +23,108 @@ def spring_axis(x, i, j):
     return length, dx * inv, dy * inv, dz * inv
 
 
+@inline_kernel
+def _dense_group_forces(positions, velocities, params, out, offset, first, length, start):
+    """Forces of the dense group (offset, first, length, start) of a
+    :class:`~netgym.physics.springs.Springs` into ``out`` (its ``dense_forces``): on the first
+    particles in rows 0-2, on the second in rows 3-5, -0.0 (which adds nothing, bitwise) where a
+    spring is missing or degenerate. Contiguous columns and unsigned indices: the compiler
+    vectorises this loop."""
+    for t in range(length):
+        i = first + t
+        j = i + offset
+        s = start + t
+        dx = positions[0, i] - positions[0, j]
+        dy = positions[1, i] - positions[1, j]
+        dz = positions[2, i] - positions[2, j]
+        length_ij = math.sqrt(dx * dx + dy * dy + dz * dz)
+        inv = 1.0 / length_ij
+        ux = dx * inv
+        uy = dy * inv
+        uz = dz * inv
+        closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
+                   + (velocities[2, i] - velocities[2, j]) * uz)
+        mag = -params[1, s] * (length_ij - params[0, s]) - params[2, s] * closing
+        exists = (params[3, s] != 0.0) & (length_ij > 1e-12)
+        fx = mag * ux
+        fy = mag * uy
+        fz = mag * uz
+        out[0, s] = fx if exists else -0.0
+        out[1, s] = fy if exists else -0.0
+        out[2, s] = fz if exists else -0.0
+        out[3, s] = -fx if exists else -0.0
+        out[4, s] = -fy if exists else -0.0
+        out[5, s] = -fz if exists else -0.0
+
+
+@inline_kernel
+def _add_dense_group(totals, forces, row, first, length, start):
+    """Add rows ``row .. row + 2`` of a dense group's forces to the force columns ``totals`` of
+    the particles ``first .. first + length - 1``."""
+    for c in range(3):
+        for t in range(length):
+            totals[c, first + t] += forces[row + c, start + t]
+
+
 @kernel
-def spring_forces(x, v, springs, params, f):
-    """Add every spring's force to ``f`` (n, 3)."""
-    for s in range(springs.shape[0]):
-        i = springs[s, 0]
-        j = springs[s, 1]
-        length, ux, uy, uz = spring_axis(x, i, j)
-        if length <= 1e-12:
+def spring_forces(x, v, springs, f):
+    """Add every spring's force to ``f`` (n, 3); ``springs``: a
+    :class:`~netgym.physics.springs.Springs`. Bitwise the sum of a loop over the springs sorted
+    by particle pair: on the second particles group by group in decreasing offset, then on the
+    first particles in increasing offset (the :mod:`~netgym.physics.springs` module says why).
+    The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
+    groups, pairs, params, sparse = springs.groups, springs.sparse_pairs, springs.sparse_params, springs.sparse_forces
+    positions, velocities, totals = springs.columns[0:3], springs.columns[3:6], springs.columns[6:9]
+    for k in range(positions.shape[1]):
+        for c in range(3):
+            positions[c, k] = x[k, c]
+            velocities[c, k] = v[k, c]
+            totals[c, k] = f[k, c]
+    n_groups = groups.shape[0]
+    for h in range(n_groups):
+        g = n_groups - 1 - h
+        offset, first, length, start = groups[g, 0], groups[g, 1], groups[g, 2], groups[g, 3]
+        if groups[g, 4]:
+            _dense_group_forces(positions, velocities, springs.dense_params, springs.dense_forces, offset, first,
+                                length, start)
+            _add_dense_group(totals, springs.dense_forces, 3, first + offset, length, start)
             continue
-        closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
-        mag = -params[s, 1] * (length - params[s, 0]) - params[s, 2] * closing
-        add_pair_force(f, i, j, mag * ux, mag * uy, mag * uz)
+        for s in range(start, start + length):
+            i = pairs[s, 0]
+            j = pairs[s, 1]
+            length_ij, ux, uy, uz = spring_axis(positions.T, i, j)
+            sparse[3, s] = 0.0
+            if length_ij <= 1e-12:
+                continue
+            closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
+                       + (velocities[2, i] - velocities[2, j]) * uz)
+            mag = -params[s, 1] * (length_ij - params[s, 0]) - params[s, 2] * closing
+            sparse[0, s], sparse[1, s], sparse[2, s], sparse[3, s] = mag * ux, mag * uy, mag * uz, 1.0
+            totals[0, j] -= sparse[0, s]
+            totals[1, j] -= sparse[1, s]
+            totals[2, j] -= sparse[2, s]
+    for g in range(n_groups):
+        first, length, start = groups[g, 1], groups[g, 2], groups[g, 3]
+        if groups[g, 4]:
+            _add_dense_group(totals, springs.dense_forces, 0, first, length, start)
+            continue
+        for s in range(start, start + length):
+            if sparse[3, s] != 0.0:
+                i = pairs[s, 0]
+                totals[0, i] += sparse[0, s]
+                totals[1, i] += sparse[1, s]
+                totals[2, i] += sparse[2, s]
+    for k in range(positions.shape[1]):
+        for c in range(3):
+            f[k, c] = totals[c, k]
 
 
 @kernel
-def accelerations(x, v, inv_mass, gravity, drag, springs, params, a):
-    """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs,
-    gravity and linear air drag ``-drag * v``."""
+def accelerations(x, v, inv_mass, gravity, drag, springs, a):
+    """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs (a
+    :class:`~netgym.physics.springs.Springs`), gravity and linear air drag ``-drag * v``."""
     a[:] = 0.0
-    spring_forces(x, v, springs, params, a)
+    spring_forces(x, v, springs, a)
     for k in range(x.shape[0]):
         w = inv_mass[k]
         if w > 0.0:

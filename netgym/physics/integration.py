@@ -82,7 +82,7 @@ def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.advance(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters), s.time + n_steps * settings.dt))
+        workspace.scratch(s.x.shape[0], model.springs.pairs.shape[0]), target.counters), s.time + n_steps * settings.dt))
 
 
 def integrate_watched(target: Integrand, model: KernelModel, settings: Settings, workspace: Workspace,
@@ -92,7 +92,7 @@ def integrate_watched(target: Integrand, model: KernelModel, settings: Settings,
     :func:`integrate` does."""
     s = target.state
     return _guarded(target, settings, round((watch.deadline - s.time) / settings.dt), lambda: integrate_kernel(
-        s.x, s.v, s.inv_mass, s.entered, model, settings, workspace.scratch(s.x.shape[0], model.springs.shape[0]),
+        s.x, s.v, s.inv_mass, s.entered, model, settings, workspace.scratch(s.x.shape[0], model.springs.pairs.shape[0]),
         target.counters, watch, s.time))
 
 
@@ -103,7 +103,7 @@ def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: in
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.shape[0]), target.counters, rest.record),
+        workspace.scratch(s.x.shape[0], model.springs.pairs.shape[0]), target.counters, rest.record),
         s.time + rest.steps * settings.dt))
 
 

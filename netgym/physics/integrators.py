@@ -61,11 +61,11 @@ class Scratch(NamedTuple):
 
 
 @kernel
-def step_euler(x, v, inv_mass, gravity, drag, springs, params, dt, work, symplectic):
+def step_euler(x, v, inv_mass, gravity, drag, springs, dt, work, symplectic):
     """One Euler step from a(x, v). Explicit: x += dt v(t), then v += dt a. Symplectic
     (semi-implicit): v += dt a first, then x += dt v(t+dt)."""
     a = work[0]
-    accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
+    accelerations(x, v, inv_mass, gravity, drag, springs, a)
     for k in range(x.shape[0]):
         for c in range(3):
             if symplectic:
@@ -86,15 +86,15 @@ def damper_share(dt, kd, w_i, w_j):
 
 
 @inline_kernel
-def sweep_dampers(v, springs, coef, forward):
+def sweep_dampers(v, pairs, coef, forward):
     """One Gauss-Seidel pass of per-spring damper solves over the springs, in order if
     ``forward`` else in reverse: spring s's closing speed c along its axis ``coef[s, :3]`` takes
     ``-c coef[s, 3]`` from its first particle and gives ``c coef[s, 4]`` to its second."""
-    n_springs = springs.shape[0]
+    n_springs = pairs.shape[0]
     for t in range(n_springs):
         s = t if forward else n_springs - 1 - t
-        i = springs[s, 0]
-        j = springs[s, 1]
+        i = pairs[s, 0]
+        j = pairs[s, 1]
         ux, uy, uz = coef[s, 0], coef[s, 1], coef[s, 2]
         closing = (v[i, 0] - v[j, 0]) * ux + (v[i, 1] - v[j, 1]) * uy + (v[i, 2] - v[j, 2]) * uz
         add_scaled(v, i, -(closing * coef[s, 3]), ux, uy, uz)
@@ -102,7 +102,7 @@ def sweep_dampers(v, springs, coef, forward):
 
 
 @kernel
-def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, scratch):
+def step_imex_euler(x, v, inv_mass, gravity, drag, springs, dt, scratch):
     """Implicit-explicit Euler: v += dt (elastic + gravity) / m explicitly, then the dampers and
     air drag implicitly, then x += dt v (symplectic order). ``scratch``: a :class:`Scratch`.
 
@@ -116,18 +116,19 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, scratch)
     whoever changes the masses sets to 0).
     """
     a, coef = scratch.work[0], scratch.coef
+    pairs, params = springs.pairs, springs.params
     a[:] = 0.0
-    for s in range(springs.shape[0]):
-        i = springs[s, 0]
-        j = springs[s, 1]
+    for s in range(pairs.shape[0]):
+        i = pairs[s, 0]
+        j = pairs[s, 1]
         length, ux, uy, uz = spring_axis(x, i, j)
         mag = -params[s, 1] * (length - params[s, 0])
         add_pair_force(a, i, j, mag * ux, mag * uy, mag * uz)
         coef[s, 0], coef[s, 1], coef[s, 2] = ux, uy, uz
     if scratch.coef_dt[0] != dt:
-        for s in range(springs.shape[0]):
-            i = springs[s, 0]
-            j = springs[s, 1]
+        for s in range(pairs.shape[0]):
+            i = pairs[s, 0]
+            j = pairs[s, 1]
             share = damper_share(dt, params[s, 2], inv_mass[i], inv_mass[j])
             coef[s, 3], coef[s, 4] = share * inv_mass[i], share * inv_mass[j]
         scratch.coef_dt[0] = dt
@@ -138,18 +139,18 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, params, dt, scratch)
             v[k, 0] = (v[k, 0] + dt * a[k, 0] * w) * keep
             v[k, 1] = (v[k, 1] + dt * a[k, 1] * w) * keep
             v[k, 2] = (v[k, 2] + dt * (a[k, 2] * w + gravity)) * keep
-    sweep_dampers(v, springs, coef, True)
-    sweep_dampers(v, springs, coef, False)
+    sweep_dampers(v, pairs, coef, True)
+    sweep_dampers(v, pairs, coef, False)
     for k in range(x.shape[0]):
         if inv_mass[k] > 0.0:
             add_scaled(x, k, dt, v[k, 0], v[k, 1], v[k, 2])
 
 
 @kernel
-def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
+def step_rk4(x, v, inv_mass, gravity, drag, springs, dt, work):
     """Classical fourth-order Runge-Kutta on (x, v)."""
     xs, vs, a, xsum, vsum = work[0], work[1], work[2], work[3], work[4]
-    accelerations(x, v, inv_mass, gravity, drag, springs, params, a)
+    accelerations(x, v, inv_mass, gravity, drag, springs, a)
     copy_rows(xsum, v)
     copy_rows(vsum, a)
     for stage in range(3):
@@ -161,7 +162,7 @@ def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
                 vel = vs[k, c] if stage > 0 else v[k, c]
                 xs[k, c] = x[k, c] + h * vel
                 vs[k, c] = v[k, c] + h * a[k, c]
-        accelerations(xs, vs, inv_mass, gravity, drag, springs, params, a)
+        accelerations(xs, vs, inv_mass, gravity, drag, springs, a)
         for k in range(x.shape[0]):
             for c in range(3):
                 xsum[k, c] += weight * vs[k, c]
@@ -173,7 +174,7 @@ def step_rk4(x, v, inv_mass, gravity, drag, springs, params, dt, work):
 
 
 @kernel
-def _system_product(y, inv_mass, mass_scale, springs, coef, out):
+def _system_product(y, inv_mass, mass_scale, pairs, coef, out):
     """out = (M - dt df/dv - dt^2 df/dx) y, with rows of fixed bodies zero; the drag part of
     df/dv is the factor ``mass_scale = 1 + dt * drag`` on M."""
     for k in range(y.shape[0]):
@@ -182,9 +183,9 @@ def _system_product(y, inv_mass, mass_scale, springs, coef, out):
         out[k, 0] = m * y[k, 0]
         out[k, 1] = m * y[k, 1]
         out[k, 2] = m * y[k, 2]
-    for s in range(springs.shape[0]):
-        i = springs[s, 0]
-        j = springs[s, 1]
+    for s in range(pairs.shape[0]):
+        i = pairs[s, 0]
+        j = pairs[s, 1]
         dx = y[i, 0] - y[j, 0]
         dy = y[i, 1] - y[j, 1]
         dz = y[i, 2] - y[j, 2]
@@ -207,7 +208,7 @@ def _dot(a, b):
 
 
 @kernel
-def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, settings, scratch):
+def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, dt, settings, scratch):
     """Linearised backward Euler (Baraff & Witkin 1998).
 
     Solves ``(M - dt D - dt^2 K) dv = dt (f + dt K v)`` by Jacobi-preconditioned conjugate
@@ -219,8 +220,8 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, sett
     work, coef = scratch.work, scratch.coef
     scratch.coef_dt[0] = 0.0  # coef is about to hold this system's terms, not IMEX Euler's shares
     mass_scale = 1.0 + dt * drag
-    _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef)
-    iterations = _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch)
+    _implicit_system(x, v, inv_mass, gravity, drag, springs, dt, work, coef)
+    iterations = _conjugate_gradients(inv_mass, mass_scale, springs.pairs, dt, settings, scratch)
     dv = work[5]
     for k in range(x.shape[0]):
         for c in range(3):
@@ -230,13 +231,14 @@ def step_implicit_euler(x, v, inv_mass, gravity, drag, springs, params, dt, sett
 
 
 @kernel
-def _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, coef):
+def _implicit_system(x, v, inv_mass, gravity, drag, springs, dt, work, coef):
     """Assemble implicit Euler's system: the forces plus ``dt K v`` in ``work[0]``, the
     diagonal of the system matrix (the preconditioner) in ``work[6]``, and each spring's axis
     and stiffness terms (ux, uy, uz, iso, axial) in ``coef`` for :func:`_system_product`."""
     f, diag = work[0], work[6]
     f[:] = 0.0
-    spring_forces(x, v, springs, params, f)
+    spring_forces(x, v, springs, f)
+    pairs, params = springs.pairs, springs.params
     mass_scale = 1.0 + dt * drag
     for k in range(x.shape[0]):
         w = inv_mass[k]
@@ -245,9 +247,9 @@ def _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, c
             f[k, c] -= drag * m * v[k, c]
             diag[k, c] = mass_scale * m
         f[k, 2] += m * gravity
-    for s in range(springs.shape[0]):
-        i = springs[s, 0]
-        j = springs[s, 1]
+    for s in range(pairs.shape[0]):
+        i = pairs[s, 0]
+        j = pairs[s, 1]
         length, ux, uy, uz = spring_axis(x, i, j)
         ks, kd = params[s, 1], params[s, 2]
         stretch = 1.0 - params[s, 0] / length if length > 1e-12 else 0.0
@@ -268,7 +270,7 @@ def _implicit_system(x, v, inv_mass, gravity, drag, springs, params, dt, work, c
 
 
 @kernel
-def _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch):
+def _conjugate_gradients(inv_mass, mass_scale, pairs, dt, settings, scratch):
     """Solve the system :func:`_implicit_system` assembled for ``dv`` (``work[5]``) by
     Jacobi-preconditioned conjugate gradients from dv = 0; returns the iterations taken."""
     work, coef = scratch.work, scratch.coef
@@ -286,7 +288,7 @@ def _conjugate_gradients(inv_mass, mass_scale, springs, dt, settings, scratch):
     threshold = settings.cg_tolerance * settings.cg_tolerance * _dot(r, r)
     iterations = 0
     while iterations < settings.cg_max_iterations and _dot(r, r) > threshold and rz_old > 0.0:
-        _system_product(p, inv_mass, mass_scale, springs, coef, q)
+        _system_product(p, inv_mass, mass_scale, pairs, coef, q)
         alpha = rz_old / _dot(p, q)
         for k in range(n):
             for c in range(3):
@@ -322,19 +324,17 @@ def _smooth_step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
                              f"not {settings}")
     if integrator == Integrator.RK4:
         def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
-            step_rk4(x, v, inv_mass, gravity, model.drag, model.springs, model.spring_params, dt, scratch.work)
+            step_rk4(x, v, inv_mass, gravity, model.drag, model.springs, dt, scratch.work)
     elif integrator == Integrator.IMEX_EULER:
         def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
-            step_imex_euler(x, v, inv_mass, gravity, model.drag, model.springs, model.spring_params, dt,
-                            scratch)
+            step_imex_euler(x, v, inv_mass, gravity, model.drag, model.springs, dt, scratch)
     elif integrator == Integrator.IMPLICIT_EULER:
         def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
-            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, gravity, model.drag, model.springs,
-                                                          model.spring_params, dt, settings, scratch)
+            stats[0].cg_iterations += step_implicit_euler(x, v, inv_mass, gravity, model.drag, model.springs, dt,
+                                                          settings, scratch)
     else:
         symplectic = integrator == Integrator.SYMPLECTIC_EULER
 
         def step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
-            step_euler(x, v, inv_mass, gravity, model.drag, model.springs, model.spring_params, dt,
-                       scratch.work, symplectic)
+            step_euler(x, v, inv_mass, gravity, model.drag, model.springs, dt, scratch.work, symplectic)
     return step

@@ -18,6 +18,7 @@ from netgym.physics.contacts import Materials, Poles
 from netgym.physics.kinds import Contact, Integrator, SpringKind
 from netgym.physics.net import NetGeometry, build_net
 from netgym.physics.opening import Opening, OpeningRecord
+from netgym.physics.springs import Springs, kernel_indices
 
 
 def ball_drag_constant(config: SceneConfig) -> float:
@@ -40,8 +41,7 @@ class KernelModel(NamedTuple):
     typed record instead of a dozen arguments). Built once per :class:`Model`."""
 
     n_net: int
-    springs: np.ndarray
-    spring_params: np.ndarray
+    springs: Springs
     segments: np.ndarray
     segment_start: np.ndarray
     poles: Poles
@@ -96,13 +96,6 @@ def _settings_class(integrator: Integrator) -> type[Settings]:
 SETTINGS_CLASSES: dict[Integrator, type[Settings]] = {integrator: _settings_class(integrator) for integrator in Integrator}
 """Each integrator's class of :class:`Settings`."""
 globals().update({cls.__name__: cls for cls in SETTINGS_CLASSES.values()})  # numba's cache pickles them by name
-
-
-def kernel_indices(pairs: np.ndarray) -> np.ndarray:
-    """Particle index pairs as the kernels take them: unsigned, so that numba indexes with them
-    directly instead of first wrapping a negative index around (an index can never be negative
-    here); the same results, bitwise, in fewer instructions a spring."""
-    return np.ascontiguousarray(pairs, dtype=np.uint32)
 
 
 @dataclass(frozen=True)
@@ -178,11 +171,10 @@ class Model:
 
     @functools.cached_property
     def kernel(self) -> KernelModel:
-        """The arrays and constants the kernels need, as one record; its springs in
-        :func:`wavefront_order`."""
-        order = wavefront_order(self.springs, self.n_net)
-        springs, params = kernel_indices(self.springs[order]), np.ascontiguousarray(self.spring_params[order])
-        return KernelModel(self.n_net, springs, params, kernel_indices(self.segments), self.segment_start, self.poles,
+        """The arrays and constants the kernels need, as one record; its springs a
+        :class:`~netgym.physics.springs.Springs`."""
+        springs = Springs.of(self.springs, self.spring_params, self.n_net)
+        return KernelModel(self.n_net, springs, kernel_indices(self.segments), self.segment_start, self.poles,
                            Materials.of_table(self.contact), self.restitution_threshold, self.gravity, self.drag,
                            self.ball_radius, self.opening.kernel_record(), self.ball_drag, self.wind)
 
@@ -190,26 +182,6 @@ class Model:
     def n_springs(self) -> int:
         """Number of springs of all kinds."""
         return len(self.springs)
-
-
-def wavefront_order(springs: np.ndarray, n_particles: int) -> np.ndarray:
-    """An order of ``springs`` for the kernels' loops that gives bitwise the same results as
-    the given order, faster.
-
-    A loop that updates both ends of each spring in turn (the damper sweep, the force
-    scatter) depends on the order only through the springs that share a particle. Each spring
-    gets a wavefront: one past the latest wavefront of the springs before it at either end. No
-    two springs of a wavefront share a particle, and the springs sharing a particle keep their
-    order, so every particle sees the same updates in the same order. The processor no longer
-    waits at every spring for the store of the spring before it (in memory order the springs
-    of one particle come one after the other); what that saves is measured in the benchmark
-    report (``docs/BENCHMARKS.md``, what the optimisations bought).
-    """
-    latest = [0] * n_particles
-    wavefront = np.empty(len(springs), dtype=np.int64)
-    for s, (i, j) in enumerate(springs.tolist()):
-        wavefront[s] = latest[i] = latest[j] = max(latest[i], latest[j]) + 1
-    return np.argsort(wavefront, kind="stable")
 
 
 @dataclass

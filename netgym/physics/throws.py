@@ -184,8 +184,8 @@ class Throw:
         ``deadline`` and ``about`` (see :class:`Course`): its energy budget measured now."""
         sim, row = self.sim, self.ball.row
         s, m, km, cfg = sim.state, sim.model, sim.kernel_model, sim.config.simulation
-        budget = reach.Budget(reach.potential_without_ball(s.x, s.v, s.inv_mass, row, km.gravity, km.springs,
-                                                           km.spring_params),
+        budget = reach.Budget(reach.potential_without_ball(s.x, s.v, s.inv_mass, row, km.gravity, km.springs.pairs,
+                                                           km.springs.params),
                               sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind), km.gravity,
                               m.ball_radius, sim.opening.lowest_z)
         rest = RestWindow.sized(s.x.shape[0], cfg.dt, TUNING.rest_window, TUNING.time_epsilon,
@@ -255,7 +255,7 @@ class Throw:
         (slower than ``sleep_speed``) and it could fly clear for a step, the scene goes to sleep,
         so that the ball flies in closed form again."""
         s, km, watch = self.sim.state, self.sim.kernel_model, self.course.watch
-        others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs, km.spring_params,
+        others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs.pairs, km.springs.params,
                                                      km.opening, km.poles, watch)
         reason = self._decided(at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
         if reason is None and others < watch.sleep_speed and self._flight_time() > 0.0:

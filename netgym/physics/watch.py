@@ -157,7 +157,7 @@ def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, 
         t += n * dt
         if watch.deadline - t < 0.5 * dt or opening_depth(opening, x[row]) >= watch.rule_depth:
             return OK, t
-        others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model.springs, model.spring_params,
+        others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model.springs.pairs, model.springs.params,
                                                         opening, model.poles, watch)
         if others < watch.sleep_speed or not inside or rest or unreachable:
             return OK, t

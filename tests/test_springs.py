@@ -1,0 +1,87 @@
+"""The force pass over springs grouped by index offset against a plain loop over the springs."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from netgym.physics import forces
+from netgym.physics.simulator import Simulator
+from netgym.physics.springs import Springs
+
+
+def _serial_spring_forces(x, v, pairs, params, f) -> None:
+    """The textbook loop: each spring in the given order adds its force to both ends."""
+    for (i, j), (rest, ks, kd) in zip(pairs.tolist(), params.tolist()):
+        d = [x[i, c] - x[j, c] for c in range(3)]
+        length = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+        if length <= 1e-12:
+            continue
+        inv = 1.0 / length
+        u = [d[c] * inv for c in range(3)]
+        closing = (v[i, 0] - v[j, 0]) * u[0] + (v[i, 1] - v[j, 1]) * u[1] + (v[i, 2] - v[j, 2]) * u[2]
+        mag = -ks * (length - rest) - kd * closing
+        for c in range(3):
+            f[i, c] += mag * u[c]
+            f[j, c] -= mag * u[c]
+
+
+def _bits(a: np.ndarray) -> np.ndarray:
+    return a.view(np.uint64)
+
+
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+def test_grouped_pass_is_bitwise_the_serial_loop_on_a_scenes_net(scene: str) -> None:
+    """A disturbed net (forces already in ``f``, balls' rows untouched): every bit the same as
+    the loop over the springs sorted by particle pair; the dense groups hold most springs."""
+    sim = Simulator(scene)
+    model, springs = sim.model, sim.kernel_model.springs
+    rng = np.random.default_rng(1)
+    x, v = sim.state.x.copy(), rng.normal(0.0, 1.0, sim.state.x.shape)
+    x[:model.n_net] += rng.normal(0.0, 0.01, (model.n_net, 3))
+    expected, got = rng.normal(0.0, 1.0, x.shape), None
+    got = expected.copy()
+    _serial_spring_forces(x, v, model.springs, model.spring_params, expected)
+    forces.spring_forces(x, v, springs, got)
+    assert np.array_equal(_bits(got), _bits(expected))
+    dense = springs.groups[:, 4] == 1
+    assert springs.dense_params[3].sum() > 0.9 * len(model.springs)
+    assert dense.any() and (~dense).any()
+
+
+def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenerate_ones() -> None:
+    """Random graphs, pairs given in any order and either way round, some springs of zero length
+    (they add nothing), zero forces and signed zeros in ``f``: the serial loop over the pairs
+    sorted, to the last bit."""
+    rng = np.random.default_rng(7)
+    for trial in range(30):
+        n = int(rng.integers(2, 60))
+        offsets = rng.integers(1, max(2, n // 3), 4)
+        chain = [(i, i + d) for d in offsets for i in range(n - d) if rng.random() < 0.8]
+        extra = [tuple(sorted(rng.choice(n, 2, replace=False))) for _ in range(int(rng.integers(0, 20)))]
+        pairs = np.array(sorted(set(map(tuple, map(sorted, chain + extra)))), dtype=np.int64).reshape(-1, 2)
+        params = np.column_stack([rng.uniform(0.1, 1.0, len(pairs)), rng.uniform(0.0, 100.0, len(pairs)),
+                                  rng.uniform(0.0, 5.0, len(pairs))])
+        x, v = rng.normal(0.0, 1.0, (n + 2, 3)), rng.normal(0.0, 1.0, (n + 2, 3))
+        x[rng.integers(0, n, 3)] = x[0]          # some springs of zero length
+        f = rng.choice([0.0, -0.0, 1.5], size=x.shape)
+        expected = f.copy()
+        _serial_spring_forces(x, v, pairs, params, expected)
+        shuffled = rng.permutation(len(pairs))
+        swapped = pairs[shuffled][:, ::-1] if trial % 2 else pairs[shuffled]
+        got = f.copy()
+        forces.spring_forces(x, v, Springs.of(swapped, params[shuffled], n), got)
+        assert np.array_equal(_bits(got), _bits(expected)), trial
+
+
+@pytest.mark.parametrize("pairs, params, message", [
+    ([[0, 1]], [[1.0, 1.0, 0.0], [1.0, 1.0, 0.0]], "1 spring pairs but 2 rows"),
+    ([[2, 2]], [[1.0, 1.0, 0.0]], "two different particles of 0..3"),
+    ([[0, 4]], [[1.0, 1.0, 0.0]], "two different particles of 0..3"),
+    ([[0, 1], [1, 0]], [[1.0, 1.0, 0.0]] * 2, "comes twice"),
+])
+def test_springs_of_rejects_bad_pairs_by_name(pairs, params, message) -> None:
+    with pytest.raises(ValueError, match=message):
+        Springs.of(np.array(pairs), np.array(params), 4)
