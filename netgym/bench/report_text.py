@@ -68,6 +68,15 @@ UNSIGNED_INDEX_TEXT = (
     "same results (the golden episodes). The IMEX Euler step on the basket, micro-benchmark interleaved, min of "
     "15: 53.0 -> 50.3 us; oracle 3-ball episodes, both index types alternating in one process (8 x 20 "
     "episodes): median ratio 1.045 throws/s (0.81-1.29, the machine's swings).")
+OFFSET_GROUPS_TEXT = (
+    "- The spring force pass over springs grouped by index offset (2026-12-02, `netgym.physics.springs`): a "
+    "particle receives its forces as a spring's second particle by decreasing offset, then as its first by "
+    "increasing offset, so the pass adds them group by group in that order, bitwise the serial loop (the golden "
+    "episodes; `tests/test_springs.py`). Groups filling half their range (on the basket 3011 of 3250 springs in "
+    "17 groups) are stored dense on contiguous columns, missing springs adding -0.0, and the compiler "
+    "vectorises them. The basket's pass, the variants interleaved in one process, minimum of 1200 calls: "
+    "9.56 -> 7.81 ns per spring. IMEX Euler's elastic loop keeps the serial form: it also stores each "
+    "spring's axis for the damper sweep in wavefront order.")
 INERTIA_TEXT = (
     "- The pause relaxes a net four times as heavy, its weight unchanged (2026-12-02): dynamic relaxation "
     "with a fictitious mass, `simulation.settle_inertia` (4 on the basket, 1 by default). Its equilibrium is "
