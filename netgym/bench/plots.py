@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
+
+import numpy as np
 
 from netgym.bench.settings import DEFAULT, REFERENCE, SWEEPS
 
@@ -40,6 +43,26 @@ def plot_work_precision(rows: list[dict], path: Path) -> None:
     plt.close(fig)
 
 
+LABEL_OFFSETS = (7, -15, 17, -25)
+"""Vertical offsets (points) of the label levels of :func:`plot_outcomes`: above, below, further above, further below."""
+LABEL_HALF_WIDTH = 0.15
+"""Half the width of a point's label in decades of throws per second (a label spans about a quarter decade)."""
+
+
+def _label_levels(speeds: list[float]) -> list[int]:
+    """A level (index into :data:`LABEL_OFFSETS`) for each point's label, so that no two labels on
+    one level overlap: each point, slowest first, takes the first level whose last label ends
+    before its own begins."""
+    ends = [-math.inf] * len(LABEL_OFFSETS)
+    levels = [0] * len(speeds)
+    for k in sorted(range(len(speeds)), key=lambda k: speeds[k]):
+        x = math.log10(speeds[k])
+        level = next((n for n, end in enumerate(ends) if end <= x - LABEL_HALF_WIDTH), int(np.argmin(ends)))
+        ends[level] = x + LABEL_HALF_WIDTH
+        levels[k] = level
+    return levels
+
+
 def plot_outcomes(rows: list[dict], path: Path) -> None:
     """Outcome agreement and throws per second: one row per integrator (so that settings of equal
     speed do not overprint), each point labelled with its dt and agreement, default ringed."""
@@ -48,16 +71,16 @@ def plot_outcomes(rows: list[dict], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(len(SWEEPS), 1, figsize=(7.5, 1.0 + 1.0 * len(SWEEPS)), sharex=True)
+    fig, axes = plt.subplots(len(SWEEPS), 1, figsize=(7.5, 1.0 + 1.3 * len(SWEEPS)), sharex=True)
     for ax, integrator in zip(axes, SWEEPS):
         runs = [r for r in rows if r["integrator"] == integrator]
         speeds = [r["throws_per_s"] for r in runs]
         colours = ["tab:green" if r["agreement"] >= OUTCOME_TARGET else "tab:red" for r in runs]
         ax.scatter(speeds, [0.0] * len(runs), c=colours, s=36, zorder=3)
         ax.plot(speeds, [0.0] * len(runs), color="gray", linewidth=0.8)
-        for k, r in enumerate(runs):
+        for r, level in zip(runs, _label_levels(speeds)):
             ax.annotate(f"{r['dt'] * 1e3:g} ms: {100 * r['agreement']:.1f}%", (r["throws_per_s"], 0.0), fontsize=7,
-                        ha="center", textcoords="offset points", xytext=(0, 7) if k % 2 == 0 else (0, -15))
+                        ha="center", textcoords="offset points", xytext=(0, LABEL_OFFSETS[level]))
             if (r["integrator"], r["dt"]) == DEFAULT:
                 ax.scatter([r["throws_per_s"]], [0.0], s=200, facecolors="none", edgecolors="red", linewidths=1.5,
                            zorder=4)
