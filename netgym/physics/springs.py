@@ -41,8 +41,9 @@ def wavefront_order(springs: np.ndarray, n_particles: int) -> np.ndarray:
     """An order of ``springs`` for the kernels' loops that gives bitwise the same results as
     the given order, faster.
 
-    A loop that updates both ends of each spring in turn (the damper sweep, the force
-    scatter) depends on the order only through the springs that share a particle. Each spring
+    A loop that updates both ends of each spring in turn (IMEX Euler's elastic forces and damper
+    sweep, implicit Euler's assembly) depends on the order only through the springs that share a
+    particle. Each spring
     gets a wavefront: one past the latest wavefront of the springs before it at either end. No
     two springs of a wavefront share a particle, and the springs sharing a particle keep their
     order, so every particle sees the same updates in the same order. The processor no longer
@@ -66,7 +67,8 @@ class Springs(NamedTuple):
     ``dense_params`` (rest length, ks, kd, 1 where the spring exists else 0); a sparse one lists
     ``length`` springs from row ``start`` of ``sparse_pairs`` and ``sparse_params``.
     ``dense_forces`` (6 rows), ``sparse_forces`` (4 rows) and ``columns`` (positions,
-    velocities and forces by coordinate, 9 rows by particle) are the force pass's scratch.
+    velocities and forces by coordinate, 9 rows by particle) are the force pass's scratch, so a
+    record serves one kernel call at a time (kernels hold the GIL; worker processes have their own).
     """
 
     pairs: np.ndarray
