@@ -109,12 +109,12 @@ def test_a_relaxation_with_inertia_leaves_the_damper_shares_of_true_masses() -> 
     used, fresh = Workspace(), Workspace()
     s = sim.state.copy()
     rest = RestTest(s.x.shape, 5, -1.0, True, inertia=4.0)
-    stepping.relax(s.x, s.v, s.inv_mass, s.entered, model, settings, 3, used.scratch(len(s.x), len(model.springs.pairs)),
+    stepping.relax(s.x, s.v, s.inv_mass, s.entered, model, settings, 3, used.scratch(s, model),
                    sim.counters, rest.record)
     states = [s, s.copy()]
     for state, workspace in zip(states, (used, fresh)):
         stepping.advance(state.x, state.v, state.inv_mass, state.entered, model, settings, 4,
-                         workspace.scratch(len(state.x), len(model.springs.pairs)), sim.counters)
+                         workspace.scratch(state, model), sim.counters)
     assert np.array_equal(states[0].x, states[1].x) and np.array_equal(states[0].v, states[1].v)
 
 

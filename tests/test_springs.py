@@ -41,7 +41,7 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_a_scenes_net(scene: str) -> 
     rng = np.random.default_rng(1)
     x, v = sim.state.x.copy(), rng.normal(0.0, 1.0, sim.state.x.shape)
     x[:model.n_net] += rng.normal(0.0, 0.01, (model.n_net, 3))
-    expected, got = rng.normal(0.0, 1.0, x.shape), None
+    expected = rng.normal(0.0, 1.0, x.shape)
     got = expected.copy()
     _serial_spring_forces(x, v, model.springs, model.spring_params, expected)
     forces.spring_forces(x, v, springs, got)

@@ -44,7 +44,8 @@ def plot_work_precision(rows: list[dict], path: Path) -> None:
 
 
 LABEL_OFFSETS = (7, -15, 17, -25)
-"""Vertical offsets (points) of the label levels of :func:`plot_outcomes`: above, below, further above, further below."""
+"""Vertical offsets (points) of the label levels of :func:`plot_outcomes`: above, below, further
+above, further below."""
 LABEL_HALF_WIDTH = 0.15
 """Half the width of a point's label in decades of throws per second (a label spans about a quarter decade)."""
 

@@ -46,9 +46,9 @@ class Workspace:
             array = self._arrays[name] = np.zeros(shape, dtype=dtype)
         return array
 
-    def scratch(self, n_bodies: int, n_springs: int) -> Scratch:
-        """Integrator scratch for one state of this size."""
-        work, coef, coef_dt = Scratch.shapes(n_bodies, n_springs)
+    def scratch(self, state: State, model: KernelModel) -> Scratch:
+        """Integrator scratch for ``state``'s bodies and ``model``'s springs."""
+        work, coef, coef_dt = Scratch.shapes(state.x.shape[0], model.springs.pairs.shape[0])
         return Scratch(self.array("work", work), self.array("coef", coef), self.array("coef_dt", coef_dt))
 
 
@@ -82,7 +82,7 @@ def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.advance(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.pairs.shape[0]), target.counters), s.time + n_steps * settings.dt))
+        workspace.scratch(s, model), target.counters), s.time + n_steps * settings.dt))
 
 
 def integrate_watched(target: Integrand, model: KernelModel, settings: Settings, workspace: Workspace,
@@ -92,7 +92,7 @@ def integrate_watched(target: Integrand, model: KernelModel, settings: Settings,
     :func:`integrate` does."""
     s = target.state
     return _guarded(target, settings, round((watch.deadline - s.time) / settings.dt), lambda: integrate_kernel(
-        s.x, s.v, s.inv_mass, s.entered, model, settings, workspace.scratch(s.x.shape[0], model.springs.pairs.shape[0]),
+        s.x, s.v, s.inv_mass, s.entered, model, settings, workspace.scratch(s, model),
         target.counters, watch, s.time))
 
 
@@ -103,7 +103,7 @@ def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: in
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
-        workspace.scratch(s.x.shape[0], model.springs.pairs.shape[0]), target.counters, rest.record),
+        workspace.scratch(s, model), target.counters, rest.record),
         s.time + rest.steps * settings.dt))
 
 
