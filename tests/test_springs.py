@@ -47,23 +47,25 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_a_scenes_net(scene: str) -> 
     forces.spring_forces(x, v, springs, got)
     assert np.array_equal(_bits(got), _bits(expected))
     dense = springs.groups[:, 4] == 1
-    assert springs.dense_params[3].sum() > 0.9 * len(model.springs)
+    assert springs.dense_params[1].sum() > 0.9 * len(model.springs)
     assert dense.any() and (~dense).any()
 
 
 def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenerate_ones() -> None:
-    """Random graphs, pairs given in any order and either way round, some springs of zero length
-    (they add nothing), zero forces and signed zeros in ``f``: the serial loop over the pairs
-    sorted, to the last bit."""
+    """Random graphs, pairs given in any order and either way round, springs of two stiffnesses
+    and two dampings (so an offset's springs fall into several groups, dense and sparse), some of
+    zero length (they add nothing), zero forces and signed zeros in ``f``: the serial loop over
+    the pairs sorted, to the last bit."""
     rng = np.random.default_rng(7)
+    dense_groups = 0
     for trial in range(30):
         n = int(rng.integers(2, 60))
         offsets = rng.integers(1, max(2, n // 3), 4)
         chain = [(i, i + d) for d in offsets for i in range(n - d) if rng.random() < 0.8]
         extra = [tuple(sorted(rng.choice(n, 2, replace=False))) for _ in range(int(rng.integers(0, 20)))]
         pairs = np.array(sorted(set(map(tuple, map(sorted, chain + extra)))), dtype=np.int64).reshape(-1, 2)
-        params = np.column_stack([rng.uniform(0.1, 1.0, len(pairs)), rng.uniform(0.0, 100.0, len(pairs)),
-                                  rng.uniform(0.0, 5.0, len(pairs))])
+        params = np.column_stack([rng.uniform(0.1, 1.0, len(pairs)), rng.choice([30.0, 100.0 / 3.0], len(pairs)),
+                                  rng.choice([0.0, 0.7], len(pairs), p=[0.1, 0.9])])
         x, v = rng.normal(0.0, 1.0, (n + 2, 3)), rng.normal(0.0, 1.0, (n + 2, 3))
         x[rng.integers(0, n, 3)] = x[0]          # some springs of zero length
         f = rng.choice([0.0, -0.0, 1.5], size=x.shape)
@@ -72,8 +74,11 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenera
         shuffled = rng.permutation(len(pairs))
         swapped = pairs[shuffled][:, ::-1] if trial % 2 else pairs[shuffled]
         got = f.copy()
-        forces.spring_forces(x, v, Springs.of(swapped, params[shuffled], n), got)
+        springs = Springs.of(swapped, params[shuffled], n)
+        forces.spring_forces(x, v, springs, got)
         assert np.array_equal(_bits(got), _bits(expected)), trial
+        dense_groups += int(springs.groups[:, 4].sum())
+    assert dense_groups > 30
 
 
 @pytest.mark.parametrize("pairs, params, message", [

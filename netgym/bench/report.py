@@ -27,6 +27,7 @@ from netgym.bench.results import RESULTS, read_results
 from netgym.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
+    ALIGNED_PASS_TEXT,
     BROAD_PHASE_TEXT,
     COMPILED_LOOPS_TEXT,
     CONTACT_ORDER_TEXT,
@@ -161,6 +162,7 @@ def _gains(report: Report) -> list[str]:
         DAMPER_SHARES_TEXT,
         UNSIGNED_INDEX_TEXT,
         OFFSET_GROUPS_TEXT,
+        ALIGNED_PASS_TEXT,
         NOTHING_TO_SETTLE_TEXT,
         PAUSE_TEXT,
         STEP_LIMIT_TEXT,

@@ -24,12 +24,35 @@ def spring_axis(x, i, j):
 
 
 @inline_kernel
-def _dense_group_forces(positions, velocities, params, out, offset, first, length, start):
-    """Forces of the dense group (offset, first, length, start) of a
-    :class:`~netgym.physics.springs.Springs` into ``out`` (its ``dense_forces``): on the first
-    particles in rows 0-2, on the second in rows 3-5, -0.0 (which adds nothing, bitwise) where a
-    spring is missing or degenerate. Contiguous columns and unsigned indices: the compiler
-    vectorises this loop."""
+def _to_columns(rows, columns, n):
+    """Copy the first ``n`` rows of the C-contiguous ``rows`` (at least n, 3) into the first n
+    places of the three rows of ``columns``. Read as a flat array with a constant stride, the
+    copy is vectorised (the compiler interleaves the loads); indexed by row and column it is not."""
+    flat = rows.reshape(-1)
+    for k in range(n):
+        columns[0, k] = flat[3 * k]
+        columns[1, k] = flat[3 * k + 1]
+        columns[2, k] = flat[3 * k + 2]
+
+
+@inline_kernel
+def _from_columns(columns, rows, n):
+    """Copy the first ``n`` places of ``columns``' three rows back into the first n rows of the
+    C-contiguous ``rows``, vectorised likewise."""
+    flat = rows.reshape(-1)
+    for k in range(n):
+        flat[3 * k] = columns[0, k]
+        flat[3 * k + 1] = columns[1, k]
+        flat[3 * k + 2] = columns[2, k]
+
+
+@inline_kernel
+def _dense_group_forces(positions, velocities, params, out, offset, first, length, start, ks, kd):
+    """Forces of the dense group (offset, first, length, start), of stiffness ``ks`` and damping
+    ``kd``, of a :class:`~netgym.physics.springs.Springs` into ``out`` (its ``dense_forces``): on
+    the first particles in rows 0-2, on the second in rows 3-5, -0.0 (which adds nothing,
+    bitwise) where a spring is missing or degenerate. Contiguous columns and unsigned indices:
+    the compiler vectorises this loop."""
     for t in range(length):
         i = first + t
         j = i + offset
@@ -44,8 +67,8 @@ def _dense_group_forces(positions, velocities, params, out, offset, first, lengt
         uz = dz * inv
         closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
                    + (velocities[2, i] - velocities[2, j]) * uz)
-        mag = -params[1, s] * (length_ij - params[0, s]) - params[2, s] * closing
-        exists = (params[3, s] != 0.0) & (length_ij > 1e-12)
+        mag = -ks * (length_ij - params[0, s]) - kd * closing
+        exists = (params[1, s] != 0.0) & (length_ij > 1e-12)
         fx = mag * ux
         fy = mag * uy
         fz = mag * uz
@@ -75,18 +98,17 @@ def spring_forces(x, v, springs, f):
     The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
     groups, pairs, params, sparse = springs.groups, springs.sparse_pairs, springs.sparse_params, springs.sparse_forces
     positions, velocities, totals = springs.columns[0:3], springs.columns[3:6], springs.columns[6:9]
-    for k in range(positions.shape[1]):
-        for c in range(3):
-            positions[c, k] = x[k, c]
-            velocities[c, k] = v[k, c]
-            totals[c, k] = f[k, c]
+    n = springs.n_particles
+    _to_columns(x, positions, n)
+    _to_columns(v, velocities, n)
+    _to_columns(f, totals, n)
     n_groups = groups.shape[0]
     for h in range(n_groups):
         g = n_groups - 1 - h
         offset, first, length, start = groups[g, 0], groups[g, 1], groups[g, 2], groups[g, 3]
         if groups[g, 4]:
             _dense_group_forces(positions, velocities, springs.dense_params, springs.dense_forces, offset, first,
-                                length, start)
+                                length, start, springs.group_params[g, 0], springs.group_params[g, 1])
             _add_dense_group(totals, springs.dense_forces, 3, first + offset, length, start)
             continue
         for s in range(start, start + length):
@@ -114,9 +136,7 @@ def spring_forces(x, v, springs, f):
                 totals[0, i] += sparse[0, s]
                 totals[1, i] += sparse[1, s]
                 totals[2, i] += sparse[2, s]
-    for k in range(positions.shape[1]):
-        for c in range(3):
-            f[k, c] = totals[c, k]
+    _from_columns(totals, f, n)
 
 
 @kernel

@@ -12,10 +12,18 @@ on the second particles group by group in decreasing offset, then those on the f
 in increasing offset; within a group no two springs share a first or a second particle, so the
 order inside it does not matter.
 
-A group whose springs fill at least half the range of first particles they span is *dense*: it
-is stored over that whole range, the missing springs flagged, so that the springs' particles
-are ``lo + t`` and ``lo + t + d``, contiguous in memory (the pass copies positions, velocities
-and forces into columns, one per coordinate). The other groups are *sparse*: a list of pairs.
+A group holds the springs of one offset and one stiffness and damping (in a net, one kind of
+spring). One whose springs fill at least half the range of first particles they span is
+*dense*: it is stored over that whole range, widened to whole vector registers, the missing
+springs flagged, so that the springs' particles are ``lo + t`` and ``lo + t + d``, contiguous
+in memory (the pass copies positions, velocities and forces into columns, one per coordinate),
+and its stiffness and damping are read once for the group. The other groups are *sparse*: a
+list of pairs with their parameters.
+
+The dense blocks and the columns start on cache-line boundaries and every dense range starts
+at a multiple of :data:`LANES` particles, so that the pass's vector loads and stores of first
+particles, parameters and forces do not straddle two cache lines; the results do not depend on
+it (a copy of a record, e.g. after pickling, may lose the alignment and only runs slower).
 """
 
 from __future__ import annotations
@@ -28,6 +36,8 @@ DENSE_FILL = 0.5
 """The least fraction of its range of first particles a group's springs fill to be stored dense."""
 DENSE_MIN_SPRINGS = 8
 """The fewest springs a dense group holds (shorter ones do not fill a vector register well)."""
+LANES = 8
+"""float64 values in a cache line (64 bytes) and in the widest vector register (AVX-512)."""
 
 
 def kernel_indices(pairs: np.ndarray) -> np.ndarray:
@@ -64,16 +74,20 @@ class Springs(NamedTuple):
     ``pairs`` (uint32) and ``params`` (rest length, ks, kd) are in :func:`wavefront_order`.
     ``groups`` rows are (offset, first particle, length, start, dense) as uint64: a dense group
     covers the springs (first + t, first + t + offset) for t < length at columns start + t of
-    ``dense_params`` (rest length, ks, kd, 1 where the spring exists else 0); a sparse one lists
-    ``length`` springs from row ``start`` of ``sparse_pairs`` and ``sparse_params``.
-    ``dense_forces`` (6 rows), ``sparse_forces`` (4 rows) and ``columns`` (positions,
-    velocities and forces by coordinate, 9 rows by particle) are the force pass's scratch, so a
-    record serves one kernel call at a time (kernels hold the GIL; worker processes have their own).
+    ``dense_params`` (rest length, 1 where the spring exists else 0), all with the stiffness and
+    damping of its row of ``group_params`` (ks, kd); a sparse one lists ``length`` springs from
+    row ``start`` of ``sparse_pairs`` and ``sparse_params``. ``dense_forces`` (6 rows),
+    ``sparse_forces`` (4 rows) and ``columns`` (positions, velocities and forces by coordinate,
+    9 rows of ``n_particles`` and a margin the widened dense ranges reach into) are the force
+    pass's scratch, so a record serves one kernel call at a time (kernels hold the GIL; worker
+    processes have their own).
     """
 
+    n_particles: int
     pairs: np.ndarray
     params: np.ndarray
     groups: np.ndarray
+    group_params: np.ndarray
     dense_params: np.ndarray
     sparse_pairs: np.ndarray
     sparse_params: np.ndarray
@@ -98,36 +112,61 @@ class Springs(NamedTuple):
         order = np.lexsort((pairs[:, 1], pairs[:, 0]))
         pairs, params = pairs[order], params[order]
         wavefront = wavefront_order(pairs, n_particles)
-        groups, dense, sparse = _offset_groups(pairs, params)
-        dense_params = np.concatenate(dense, axis=1) if dense else np.zeros((4, 0))
+        groups, stiffness, dense, sparse = _offset_groups(pairs, params)
+        dense_slots = sum(block.shape[1] for block in dense)
+        dense_params = aligned_zeros((2, dense_slots))
+        if dense:
+            dense_params[:] = np.concatenate(dense, axis=1)
         sparse_pairs = np.concatenate([p for p, _ in sparse]) if sparse else np.zeros((0, 2), dtype=np.int64)
         sparse_params = np.concatenate([q for _, q in sparse]) if sparse else np.zeros((0, 3))
-        return cls(kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
-                   np.array(groups, dtype=np.uint64).reshape(-1, 5), np.ascontiguousarray(dense_params),
-                   kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
-                   np.zeros((6, dense_params.shape[1])), np.zeros((4, len(sparse_pairs))),
-                   np.zeros((9, n_particles)))
+        return cls(n_particles, kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
+                   np.array(groups, dtype=np.uint64).reshape(-1, 5), np.array(stiffness, dtype=np.float64).reshape(-1, 2),
+                   dense_params, kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
+                   aligned_zeros((6, dense_slots)), np.zeros((4, len(sparse_pairs))),
+                   aligned_zeros((9, _round_up(n_particles, LANES) + LANES)))
 
 
-def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, list]:
-    """The groups of :class:`Springs` in increasing offset: their table rows, the dense groups'
-    parameter blocks and the sparse groups' (pairs, params)."""
+def aligned_zeros(shape: tuple[int, int]) -> np.ndarray:
+    """A C-contiguous float64 array of zeros whose first element starts a cache line (numpy
+    aligns to 16 bytes only); with a row length that is a multiple of :data:`LANES`, every row
+    does."""
+    size = shape[0] * shape[1]
+    buffer = np.zeros(size + LANES)
+    skip = (-buffer.ctypes.data // 8) % LANES
+    return buffer[skip:skip + size].reshape(shape)
+
+
+def _round_up(n: int, multiple: int) -> int:
+    """The least multiple of ``multiple`` that is at least ``n``."""
+    return -(-n // multiple) * multiple
+
+
+def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, list, list]:
+    """The groups of :class:`Springs` in increasing offset (one per offset, stiffness and
+    damping): their table rows, their (ks, kd) (zero for sparse groups), the dense groups'
+    parameter blocks (their lengths multiples of :data:`LANES`) and the sparse groups' (pairs,
+    params)."""
     offsets = pairs[:, 1] - pairs[:, 0]
-    groups, dense, sparse = [], [], []
+    keys, key_of = np.unique(np.column_stack([offsets, params[:, 1:]]), axis=0, return_inverse=True)
+    groups, stiffness, dense, sparse = [], [], [], []
     dense_used = sparse_used = 0
-    for offset in np.unique(offsets):
-        rows = np.flatnonzero(offsets == offset)
+    for k, (offset, ks, kd) in enumerate(keys):
+        rows = np.flatnonzero(key_of.reshape(-1) == k)
         first = pairs[rows, 0]
         lo, span = int(first.min()), int(first.max() - first.min() + 1)
         if len(rows) >= DENSE_MIN_SPRINGS and len(rows) >= DENSE_FILL * span:
-            block = np.zeros((4, span))
-            block[:3, first - lo] = params[rows].T
-            block[3, first - lo] = 1.0
-            groups.append((offset, lo, span, dense_used, 1))
+            lo -= lo % LANES
+            span = _round_up(int(first.max()) + 1 - lo, LANES)
+            block = np.zeros((2, span))
+            block[0, first - lo] = params[rows, 0]
+            block[1, first - lo] = 1.0
+            groups.append((int(offset), lo, span, dense_used, 1))
+            stiffness.append((ks, kd))
             dense.append(block)
             dense_used += span
         else:
-            groups.append((offset, lo, len(rows), sparse_used, 0))
+            groups.append((int(offset), lo, len(rows), sparse_used, 0))
+            stiffness.append((0.0, 0.0))
             sparse.append((pairs[rows], params[rows]))
             sparse_used += len(rows)
-    return groups, dense, sparse
+    return groups, stiffness, dense, sparse
