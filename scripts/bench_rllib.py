@@ -55,12 +55,13 @@ def sb3_steps_per_s(iterations: int) -> dict:
     from stable_baselines3 import PPO
 
     from agents.hyperparams import POLICY, PPO_PARAMS
-    from agents.training import make_training_env
+    from agents.training import TRAINER_THREADS, make_training_env, torch_threads
 
     env = make_training_env(2, seed=0)
     model = PPO(POLICY, env, **{**PPO_PARAMS, "n_steps": BATCH // 2}, device="cpu", seed=0)
     start = time.perf_counter()
-    model.learn(total_timesteps=iterations * BATCH)
+    with torch_threads(TRAINER_THREADS):
+        model.learn(total_timesteps=iterations * BATCH)
     seconds = time.perf_counter() - start
     env.close()
     return {"env_steps": model.num_timesteps, "seconds": seconds, "env_steps_per_s": model.num_timesteps / seconds}

@@ -51,6 +51,19 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_a_scenes_net(scene: str) -> 
     assert dense.any() and (~dense).any()
 
 
+@pytest.mark.parametrize("scene", ["basket", "goal"])
+def test_dense_blocks_and_columns_start_cache_lines(scene: str) -> None:
+    """Every row of the dense blocks and the columns, and every dense range, starts a cache line
+    (8 float64), so vector loads of first particles, parameters and forces read one line each."""
+    springs = Simulator(scene).kernel_model.springs
+    for rows in (springs.dense_params, springs.dense_forces, springs.columns):
+        assert rows.flags.c_contiguous and rows.ctypes.data % 64 == 0 and rows.shape[1] % 8 == 0
+    dense = springs.groups[springs.groups[:, 4] == 1]
+    assert np.all(dense[:, 1] % 8 == 0) and np.all(dense[:, 2] % 8 == 0) and np.all(dense[:, 3] % 8 == 0)
+    # the widened ranges stay inside the columns
+    assert np.all(dense[:, 0] + dense[:, 1] + dense[:, 2] <= springs.columns.shape[1])
+
+
 def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenerate_ones() -> None:
     """Random graphs, pairs given in any order and either way round, springs of two stiffnesses
     and two dampings (so an offset's springs fall into several groups, dense and sparse), some of
