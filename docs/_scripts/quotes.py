@@ -155,8 +155,7 @@ def rllib_throughput() -> str:
     for key, label in labels.items():
         runs = ", ".join(f"{run['env_steps_per_s']:.1f}" for run in figures["runs"][key])
         lines.append(f"| {label} | {runs} | {figures['median_env_steps_per_s'][key]:.1f} |")
-    lines.append(f"\nSource: `docs/results/rllib.json`, written by `{record['command']}` ({record['written']}, "
-                 "beside other work on the machine).")
+    lines.append(f"\nSource: `docs/results/rllib.json`, written by `{record['command']}` ({record['written']}).")
     return "\n".join(lines)
 
 
