@@ -121,7 +121,8 @@ class Springs(NamedTuple):
         sparse_params = np.concatenate([q for _, q in sparse]) if sparse else np.zeros((0, 3))
         return cls(n_particles, kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
                    np.array(groups, dtype=np.uint64).reshape(-1, 5),
-                   np.array(stiffness, dtype=np.float64).reshape(-1, 2), dense_params, kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
+                   np.array(stiffness, dtype=np.float64).reshape(-1, 2), dense_params,
+                   kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
                    aligned_zeros((6, dense_slots)), np.zeros((4, len(sparse_pairs))),
                    aligned_zeros((9, _round_up(n_particles, LANES) + LANES)))
 
