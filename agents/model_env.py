@@ -17,6 +17,7 @@ import gymnasium as gym
 from gymnasium import spaces
 
 import netgym
+from netgym.errors import InvalidArgumentError
 
 DEFAULT_ENV = "NetCatch-v0"
 SAVED_AS = "netgym_env"
@@ -34,7 +35,7 @@ class ModelEnv:
         return self.env_id + (f" with {self.frame_stack} observations stacked" if self.frame_stack > 1 else "")
 
 
-class EnvMismatchError(ValueError):
+class EnvMismatchError(InvalidArgumentError):
     """A model asked to act in an env whose observations it cannot read."""
 
 
@@ -50,9 +51,10 @@ def saved_env(model: Any) -> ModelEnv | None:
 
 
 def check_registered(env_id: str) -> None:
-    """Raise ValueError unless ``env_id`` is a registered NetCatch id."""
+    """Raise InvalidArgumentError unless ``env_id`` is a registered NetCatch id."""
     if env_id not in netgym.ENVIRONMENTS:
-        raise ValueError(f"env {env_id!r} is not a registered NetCatch id; one of {list(netgym.ENVIRONMENTS)}")
+        raise InvalidArgumentError(f"env {env_id!r} is not a registered NetCatch id; "
+                                   f"one of {list(netgym.ENVIRONMENTS)}")
 
 
 @functools.cache

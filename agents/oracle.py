@@ -22,6 +22,7 @@ import numpy as np
 
 from netgym.config import SceneConfig, load_scene
 from netgym.envs import ObservationIndex
+from netgym.errors import InvalidArgumentError
 from netgym.launch import Thrower, from_range, launch_velocity
 from netgym.physics import air
 from netgym.physics.model import ball_drag_constant
@@ -192,7 +193,7 @@ class AdaptiveOracle(BallisticOracle):
     def act(self, row: np.ndarray) -> np.ndarray:
         """Update the correction from the feedback, then aim at the corrected point."""
         if len(row) <= ObservationIndex.LAST_SHORT:
-            raise ValueError("AdaptiveOracle needs the env's feedback (feedback=True)")
+            raise InvalidArgumentError("AdaptiveOracle needs the env's feedback (feedback=True)")
         if row[ObservationIndex.THROWS_LEFT] == 1.0:  # the first throw of an episode
             self.correction[:] = 0.0
         else:

@@ -15,6 +15,7 @@ from agents.oracle import BallisticOracle
 from agents.random_agent import RandomAgent
 from agents.rllib_policy import RLlibPolicy, is_rllib_checkpoint
 from netgym.envs import NetCatchEnv
+from netgym.errors import InvalidArgumentError
 
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.zip"  # trained on NetCatchWindy-v0
@@ -36,7 +37,7 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO")
     if is_rllib_checkpoint(name):
         return RLlibPolicy(name)
     if algorithm.upper() not in SB3_ALGORITHMS:
-        raise ValueError(f"algorithm = {algorithm!r} is not one of {list(SB3_ALGORITHMS)}")
+        raise InvalidArgumentError(f"algorithm = {algorithm!r} is not one of {list(SB3_ALGORITHMS)}")
     if not Path(name).is_file():
         raise FileNotFoundError(f"policy {str(name)!r} is neither 'oracle', 'random', a saved model file nor an RLlib "
                                 f"checkpoint folder")
@@ -61,8 +62,8 @@ def policy_in_env(name: str | Path, env_id: str | None = None,
     env_id = DEFAULT_ENV if env_id is None else env_id
     check_registered(env_id)
     if len(observation_space(env_id).shape) != 1:
-        raise ValueError(f"the {name} policy acts on NetCatchEnv's vector observation; {env_id} observes "
-                         f"{observation_space(env_id).shape} images")
+        raise InvalidArgumentError(f"the {name} policy acts on NetCatchEnv's vector observation; {env_id} observes "
+                                   f"{observation_space(env_id).shape} images")
     return env_id, (lambda env: BallisticOracle(env.scene)) if str(name) == "oracle" else load_policy(name)
 
 

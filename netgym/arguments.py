@@ -1,5 +1,6 @@
 """Checks of the arguments users pass, shared by the simulator, the environments and the config:
-each failure is a ValueError that names the argument."""
+each failure is an :class:`~netgym.errors.InvalidArgumentError` (a ValueError) that names the
+argument."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
+
+from netgym.errors import InvalidArgumentError
 
 
 def is_integer(value: Any) -> bool:
@@ -21,19 +24,20 @@ def is_real(value: Any) -> bool:
 
 
 def integer_argument(value: Any, name: str, minimum: int) -> int:
-    """``value`` as an int, or a ValueError naming ``name`` unless it is an integer >= ``minimum``."""
+    """``value`` as an int, or an InvalidArgumentError naming ``name`` unless it is an integer
+    >= ``minimum``."""
     if not is_integer(value) or value < minimum:
-        raise ValueError(f"{name} = {value!r}; allowed: an integer >= {minimum}")
+        raise InvalidArgumentError(f"{name} = {value!r}; allowed: an integer >= {minimum}")
     return int(value)
 
 
 def vector_argument(value: Any, name: str) -> np.ndarray:
-    """``value`` as a finite float64 3-vector, or a ValueError naming ``name``."""
+    """``value`` as a finite float64 3-vector, or an InvalidArgumentError naming ``name``."""
     arr = np.asarray(value, dtype=np.float64)
     if arr.shape != (3,):
-        raise ValueError(f"{name} must have shape (3,), got {arr.shape}")
+        raise InvalidArgumentError(f"{name} must have shape (3,), got {arr.shape}")
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+        raise InvalidArgumentError(f"{name} must be finite, got {arr.tolist()}")
     return arr
 
 

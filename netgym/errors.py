@@ -7,6 +7,11 @@ class NetgymError(Exception):
     """Base class of every error netgym raises on purpose."""
 
 
+class InvalidArgumentError(NetgymError, ValueError):
+    """An argument, action or option passed to netgym is of the wrong type, shape or value; the
+    message names it and what is allowed."""
+
+
 class ConfigError(NetgymError, ValueError):
     """A scene field is missing, unknown, of the wrong type or out of its allowed range."""
 

@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from netgym.errors import InvalidArgumentError
 from netgym.framing import Figure, flight_points, frame_points, side_view, thrower_figure
 from netgym.physics.simulator import Simulator
 
@@ -132,7 +133,7 @@ class Renderer:
     def __init__(self, sim: Simulator, width: int = 480, height: int = 360, human: bool = False, fps: int = 30,
                  supersample: int = 2) -> None:
         if not isinstance(supersample, int) or not 1 <= supersample <= 4:
-            raise ValueError(f"supersample = {supersample!r}; allowed: an integer in [1, 4]")
+            raise InvalidArgumentError(f"supersample = {supersample!r}; allowed: an integer in [1, 4]")
         self.supersample = supersample
         self.size = (width, height)
         self.look(scene_camera(sim, width * supersample, height * supersample))

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from netgym.errors import InvalidArgumentError
 from netgym.framing import side_view, thrower_figure
 from netgym.replay import Scenery, Snapshot
 
@@ -180,7 +181,7 @@ def write_replay_page(snapshots: Sequence[Snapshot], path: str | Path, fps: int,
     import plotly.io
 
     if not snapshots:
-        raise ValueError("no snapshots to write (render_mode='replay_list' collects them)")
+        raise InvalidArgumentError("no snapshots to write (render_mode='replay_list' collects them)")
     captions = list(captions) if captions is not None else [""] * len(snapshots)
     scenery = snapshots[0].scenery
     strings = net_strings(scenery.segments, snapshots[0].net)

@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 
+from netgym.errors import InvalidArgumentError
+
 FORMATS = (".gif", ".mp4", ".html")
 HOLD = 0.5          # simulated seconds the last frame of each throw is held, to read its outcome
 
@@ -27,17 +29,17 @@ def write_video(frames: Sequence[Any], path: str | Path, fps: int, captions: Seq
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in FORMATS:
-        raise ValueError(f"video path {str(path)!r}: the suffix must be one of {list(FORMATS)}")
+        raise InvalidArgumentError(f"video path {str(path)!r}: the suffix must be one of {list(FORMATS)}")
     if len(frames) == 0:
-        raise ValueError("no frames to write (render_mode='rgb_array_list' or 'replay_list' collects them)")
+        raise InvalidArgumentError("no frames to write (render_mode='rgb_array_list' or 'replay_list' collects them)")
     if captions is not None and len(captions) != len(frames):
-        raise ValueError(f"{len(captions)} captions for {len(frames)} frames; give one per frame")
+        raise InvalidArgumentError(f"{len(captions)} captions for {len(frames)} frames; give one per frame")
     from netgym.replay import Snapshot
 
     snapshots = isinstance(frames[0], Snapshot)
     if snapshots != (suffix == ".html"):
-        raise ValueError(f"video path {str(path)!r}: .html takes the snapshots of render_mode='replay_list', "
-                         f".gif and .mp4 the images of 'rgb_array_list'; got {type(frames[0]).__name__}")
+        raise InvalidArgumentError(f"video path {str(path)!r}: .html takes the snapshots of render_mode='replay_list', "
+                                   f".gif and .mp4 the images of 'rgb_array_list'; got {type(frames[0]).__name__}")
     path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".html":
         from netgym.replay_page import write_replay_page

@@ -9,6 +9,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from netgym.errors import InvalidArgumentError
 from netgym.video import EpisodeFilm
 
 VIDEO_MODES = {"mp4": "rgb_array_list", "gif": "rgb_array_list", "html": "replay_list"}  # format: render mode
@@ -32,10 +33,10 @@ class RecordEpisodeVideo(gym.Wrapper):
                  name_prefix: str = "netcatch", video_format: str = "mp4") -> None:
         super().__init__(env)
         if video_format not in VIDEO_MODES:
-            raise ValueError(f"video_format = {video_format!r}; allowed: {list(VIDEO_MODES)}")
+            raise InvalidArgumentError(f"video_format = {video_format!r}; allowed: {list(VIDEO_MODES)}")
         if env.render_mode != VIDEO_MODES[video_format]:
-            raise ValueError(f"RecordEpisodeVideo(video_format={video_format!r}) needs "
-                             f"render_mode={VIDEO_MODES[video_format]!r}, got {env.render_mode!r}")
+            raise InvalidArgumentError(f"RecordEpisodeVideo(video_format={video_format!r}) needs "
+                                       f"render_mode={VIDEO_MODES[video_format]!r}, got {env.render_mode!r}")
         self.video_folder = Path(video_folder)
         self.episode_trigger = episode_trigger or (lambda episode: True)
         self.name_prefix, self.video_format = name_prefix, video_format
@@ -80,7 +81,7 @@ class ThrowerView(gym.ObservationWrapper):
     def __init__(self, env: gym.Env, size: int = 84, fov: float = 60.0) -> None:
         super().__init__(env)
         if not isinstance(size, int) or not 16 <= size <= 512:
-            raise ValueError(f"size = {size!r}; allowed: an integer in [16, 512]")
+            raise InvalidArgumentError(f"size = {size!r}; allowed: an integer in [16, 512]")
         from netgym.render import Renderer
 
         self.fov = fov

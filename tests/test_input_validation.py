@@ -3,12 +3,16 @@ divergence's error says what to change."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
+import gymnasium as gym
 import numpy as np
 import pytest
 
 from agents.oracle import BallisticOracle
 from netgym.envs import NetCatchEnv
-from netgym.errors import EpisodeEndedError, SimulationDivergedError
+from netgym.errors import EpisodeEndedError, InvalidArgumentError, NetgymError, SimulationDivergedError
 from netgym.physics.simulator import Simulator
 
 
@@ -22,6 +26,56 @@ def test_stepping_an_ended_episode_raises_and_pays_nothing() -> None:
     assert env.sim.n_balls <= 1
     env.reset(seed=1)
     env.step(np.zeros(3, dtype=np.float32))
+
+
+MISTAKES = [
+    pytest.param({"reward_mode": "dense"}, None, None, id="reward_mode"),
+    pytest.param({"balls_per_episode": 0}, None, None, id="balls_per_episode"),
+    pytest.param({"render_mode": "ascii"}, None, None, id="render_mode"),
+    pytest.param({"fast": "no"}, None, None, id="fast"),
+    pytest.param({"overrides": {"air.density": 1.2}, "wind": (3.0, 1.0)}, None, None, id="wind"),
+    pytest.param({"launch_noise": (0.3, -1.0, 1.0)}, None, None, id="launch_noise"),
+    pytest.param({"randomize": {"ball.mass": (2.0, 1.0)}}, None, None, id="randomize"),
+    pytest.param({}, {"wind": 3.0}, None, id="reset option key"),
+    pytest.param({}, {"thrower": {"distance": -1.0}}, None, id="reset thrower"),
+    pytest.param({}, None, np.zeros(2, dtype=np.float32), id="action shape"),
+    pytest.param({}, None, np.array([0.0, np.inf, 0.0], dtype=np.float32), id="action not finite"),
+]
+"""User mistakes: env arguments, reset options, an action (each None where not the mistake)."""
+
+MAKERS: dict[str, Callable[..., Any]] = {"direct": NetCatchEnv,
+                                         "gym.make": lambda **kwargs: gym.make("NetCatch-v0", **kwargs)}
+
+
+@pytest.mark.parametrize("maker", list(MAKERS))
+@pytest.mark.parametrize(("kwargs", "options", "action"), MISTAKES)
+def test_user_mistakes_raise_a_netgym_error_that_is_a_value_error(maker: str, kwargs: dict, options: dict | None,
+                                                                 action: np.ndarray | None) -> None:
+    with pytest.raises(NetgymError) as failure:
+        env = MAKERS[maker](**kwargs)
+        env.reset(seed=0, options=options)
+        if action is not None:
+            env.step(action)
+    assert isinstance(failure.value, ValueError) and isinstance(failure.value, InvalidArgumentError)
+
+
+@pytest.mark.parametrize("mistake", [
+    lambda sim: sim.step(n_steps=-1), lambda sim: sim.step(dt=float("nan")),
+    lambda sim: sim.step(integrator="verlet"), lambda sim: sim.launch_ball([0.0, 0.0, -1.0], [1.0, 0.0, 0.0]),
+    lambda sim: sim.launch_ball([0.0, 0.0], [1.0, 0.0, 0.0]), lambda sim: sim.launch_ball([0.0, 0.0, 5.0], [1e3, 0.0, 0.0]),
+], ids=["n_steps", "dt", "integrator", "position below ground", "position shape", "velocity"])
+def test_simulator_mistakes_raise_a_netgym_error_that_is_a_value_error(basket: Simulator,
+                                                                       mistake: Callable[[Simulator], Any]) -> None:
+    with pytest.raises(InvalidArgumentError) as failure:
+        mistake(basket)
+    assert isinstance(failure.value, NetgymError) and isinstance(failure.value, ValueError)
+
+
+def test_step_before_reset_is_refused_by_gymnasium_first_through_make() -> None:
+    with pytest.raises(EpisodeEndedError, match="call reset"):
+        NetCatchEnv().step(np.zeros(3, dtype=np.float32))
+    with pytest.raises(gym.error.ResetNeeded):
+        gym.make("NetCatch-v0").step(np.zeros(3, dtype=np.float32))
 
 
 @pytest.mark.parametrize(("kwargs", "message"), [

@@ -17,6 +17,8 @@ from typing import Any
 
 import yaml
 
+from netgym.errors import InvalidArgumentError
+
 PPO_YML = Path(__file__).resolve().parent / "ppo.yml"
 ENV_ID = "NetCatch-v0"
 ZOO_ONLY = ("n_envs", "n_timesteps", "policy", "env_kwargs")  # rl_zoo3's run settings, not PPO arguments
@@ -29,11 +31,12 @@ RLLIB_NAMES = {"learning_rate": "lr", "gamma": "gamma", "gae_lambda": "lambda_",
 
 def parse_policy_kwargs(text: str) -> dict[str, Any]:
     """rl_zoo3's ``policy_kwargs`` string, ``dict(name=literal, ...)``, as a dict, without
-    evaluating it: anything but literal values (names, calls, attributes) raises ValueError."""
+    evaluating it: anything but literal values (names, calls, attributes) raises
+    InvalidArgumentError."""
     node = ast.parse(text, mode="eval").body
     if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "dict"
             and not node.args and all(k.arg is not None for k in node.keywords)):
-        raise ValueError(f"policy_kwargs must read dict(name=literal, ...), not {text!r}")
+        raise InvalidArgumentError(f"policy_kwargs must read dict(name=literal, ...), not {text!r}")
     return {k.arg: ast.literal_eval(k.value) for k in node.keywords}
 
 

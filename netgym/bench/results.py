@@ -16,6 +16,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from netgym.errors import InvalidArgumentError
+
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
 """Where the repository keeps its result files."""
 
@@ -43,5 +45,5 @@ def read_results(path: str | Path) -> dict[str, Any]:
         raise FileNotFoundError(f"result file {path} is missing: run the command that writes it")
     record = json.loads(path.read_text())
     if not isinstance(record, dict) or "figures" not in record:
-        raise ValueError(f"{path} is not a result file (no 'figures' field)")
+        raise InvalidArgumentError(f"{path} is not a result file (no 'figures' field)")
     return record

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.bench.settings import REFERENCE, SWEEPS
-from netgym.errors import SimulationDivergedError
+from netgym.errors import InvalidArgumentError, SimulationDivergedError
 from netgym.physics.simulator import Simulator
 
 STRIKE = (np.array([0.3, 0.2, 2.4]), np.array([1.0, 0.5, -9.0]))  # a ball driven into the basket's bottom
@@ -36,7 +36,7 @@ def strike(integrator: str, dt: float, seconds: float = STRIKE_SECONDS) -> Run:
     sim.launch_ball(*STRIKE)
     per_sample = round(SAMPLE / dt)
     if abs(per_sample * dt - SAMPLE) > 1e-9 * SAMPLE:
-        raise ValueError(f"dt = {dt:g} s does not divide the sampling interval {SAMPLE:g} s")
+        raise InvalidArgumentError(f"dt = {dt:g} s does not divide the sampling interval {SAMPLE:g} s")
     samples, wall = [], 0.0
     for _ in range(round(seconds / SAMPLE)):
         start = time.perf_counter()

@@ -14,7 +14,7 @@ from gymnasium import spaces
 
 from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
-from netgym.errors import EpisodeEndedError
+from netgym.errors import EpisodeEndedError, InvalidArgumentError
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
 from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
@@ -178,14 +178,14 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                  launch_noise: tuple[float, float, float] | None = None, feedback: bool = False,
                  randomize: dict[str, tuple[float, float]] | None = None) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
+            raise InvalidArgumentError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
         if reward_mode not in REWARD_MODES:
-            raise ValueError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
+            raise InvalidArgumentError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
         if not is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
-            raise ValueError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
+            raise InvalidArgumentError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
         for name, flag in (("fast", fast), ("render_settling", render_settling), ("feedback", feedback)):
             if not isinstance(flag, (bool, np.bool_)):
-                raise ValueError(f"{name} = {flag!r}; allowed: True or False")
+                raise InvalidArgumentError(f"{name} = {flag!r}; allowed: True or False")
         config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
         changes = dict(overrides or {})
         if integrator is not None:
@@ -199,7 +199,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self.feedback = bool(feedback)
         self.sim = Simulator(config.replace(changes) if changes else config)
         if self.wind_range is not None and self.sim.model.ball_drag == 0.0:
-            raise ValueError("wind needs air: the scene's air.density is 0 (pass overrides={'air.density': 1.2})")
+            raise InvalidArgumentError("wind needs air: the scene's air.density is 0 "
+                                       "(pass overrides={'air.density': 1.2})")
         self.scene = self.sim.config
         self._base_scene = self.scene
         self.randomize = None if randomize is None else SceneRanges.parse(randomize, self.scene)
@@ -293,27 +294,28 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         if options is None:
             return {}
         if not isinstance(options, Mapping):
-            raise ValueError(f"options must be a dict or None, got {type(options).__name__}")
+            raise InvalidArgumentError(f"options must be a dict or None, got {type(options).__name__}")
         unknown = sorted(set(map(str, options)) - set(RESET_OPTIONS))
         if unknown:
-            raise ValueError(f"unknown reset option(s) {unknown}; NetCatch-v0 takes {list(RESET_OPTIONS)}")
+            raise InvalidArgumentError(f"unknown reset option(s) {unknown}; NetCatch-v0 takes {list(RESET_OPTIONS)}")
         thrower = options.get("thrower", {})
         if not isinstance(thrower, Mapping):
-            raise ValueError(f"options['thrower'] must be a dict, got {type(thrower).__name__}")
+            raise InvalidArgumentError(f"options['thrower'] must be a dict, got {type(thrower).__name__}")
         ranges = {"distance": self.scene.throw.distance, "bearing": self.scene.throw.bearing,
                   "height": self.scene.throw.height}
         for key, value in thrower.items():
             if key not in ranges:
-                raise ValueError(f"options['thrower'] has unknown key {key!r}; allowed: {list(ranges)}")
+                raise InvalidArgumentError(f"options['thrower'] has unknown key {key!r}; allowed: {list(ranges)}")
             lo, hi = ranges[key]
             if not is_real(value) or not lo <= float(value) <= hi:
-                raise ValueError(f"options['thrower']['{key}'] = {value!r}; allowed: a number in [{lo:g}, {hi:g}]")
+                raise InvalidArgumentError(f"options['thrower']['{key}'] = {value!r}; "
+                                           f"allowed: a number in [{lo:g}, {hi:g}]")
         overrides = options.get("overrides", {})
         if not isinstance(overrides, Mapping):
-            raise ValueError(f"options['overrides'] must be a dict, got {type(overrides).__name__}")
+            raise InvalidArgumentError(f"options['overrides'] must be a dict, got {type(overrides).__name__}")
         if any(str(field).startswith("throw.") for field in overrides):
-            raise ValueError("options['overrides'] may not change the throw ranges (they define the spaces); "
-                             "make a new env with those overrides instead")
+            raise InvalidArgumentError("options['overrides'] may not change the throw ranges (they define the spaces); "
+                                       "make a new env with those overrides instead")
         checked: dict[str, Any] = {}
         if "thrower" in options:
             checked["thrower"] = {k: float(v) for k, v in thrower.items()}
@@ -328,8 +330,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         sim = Simulator(config)
         centre, floor = sim.opening.centre, float(sim.state.x[:, 2].min())
         if _observation_space(config, centre, floor, self.feedback) != self.observation_space:
-            raise ValueError("these overrides change the observation space's bounds (the net's geometry or the "
-                             "ball radius); make a new env with them instead")
+            raise InvalidArgumentError("these overrides change the observation space's bounds (the net's geometry "
+                                       "or the ball radius); make a new env with them instead")
         self.sim, self.scene, self._centre, self._floor = sim, config, centre, floor
         self._scenery = None
         self.close()  # the renderer's camera and frames belong to the old scene
@@ -357,12 +359,12 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         """Validate an action; its (speed, elevation, azimuth offset), values clipped to [-1, 1]."""
         a = np.asarray(action)
         if a.dtype.kind not in "fiu":
-            raise ValueError(f"action must be an array of real numbers, got {a.dtype} values: {action!r}")
+            raise InvalidArgumentError(f"action must be an array of real numbers, got {a.dtype} values: {action!r}")
         a = a.astype(np.float64)
         if a.shape != (3,):
-            raise ValueError(f"action must have shape (3,), got {a.shape}")
+            raise InvalidArgumentError(f"action must have shape (3,), got {a.shape}")
         if not np.all(np.isfinite(a)):
-            raise ValueError(f"action must be finite, got {a.tolist()}")
+            raise InvalidArgumentError(f"action must be finite, got {a.tolist()}")
         return action_to_launch(np.clip(a, -1.0, 1.0), self.scene.throw)
 
     def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,

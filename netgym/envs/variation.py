@@ -11,6 +11,7 @@ import numpy as np
 
 from netgym.arguments import is_real
 from netgym.config import SceneConfig
+from netgym.errors import InvalidArgumentError
 from netgym.physics import air
 from netgym.physics.simulator import Simulator
 
@@ -21,7 +22,7 @@ FEEDBACK_LIMIT = 10.0     # m: feedback offsets are clipped to this
 def _pair_or_triple(value: object, name: str, size: int, what: str) -> tuple[float, ...]:
     if (not isinstance(value, (tuple, list)) or len(value) != size
             or not all(is_real(x) and math.isfinite(float(x)) and float(x) >= 0.0 for x in value)):
-        raise ValueError(f"{name} = {value!r}; allowed: {size} numbers >= 0 ({what})")
+        raise InvalidArgumentError(f"{name} = {value!r}; allowed: {size} numbers >= 0 ({what})")
     return tuple(float(x) for x in value)
 
 
@@ -38,7 +39,7 @@ class WindRange:
         """From a ``(low, high)`` pair of m/s."""
         low, high = _pair_or_triple(value, "wind", 2, "the range of wind speeds, m/s")
         if low > high:
-            raise ValueError(f"wind = {value!r}; allowed: an increasing (low, high) pair of speeds")
+            raise InvalidArgumentError(f"wind = {value!r}; allowed: an increasing (low, high) pair of speeds")
         return cls(low, high)
 
     def draw(self, rng: np.random.Generator) -> np.ndarray:
@@ -81,15 +82,16 @@ class SceneRanges:
         """From a dict of dotted scene fields to ``(low, high)``; both ends must make a valid
         scene (a ConfigError names the field otherwise)."""
         if not isinstance(value, dict) or not value:
-            raise ValueError(f"randomize = {value!r}; allowed: a dict of scene fields to (low, high) ranges")
+            raise InvalidArgumentError(f"randomize = {value!r}; allowed: a dict of scene fields to (low, high) ranges")
         ranges = []
         for field, bounds in value.items():
             if (not isinstance(bounds, (tuple, list)) or len(bounds) != 2
                     or not all(is_real(x) and math.isfinite(float(x)) for x in bounds)):
-                raise ValueError(f"randomize[{field!r}] = {bounds!r}; allowed: a (low, high) pair of numbers")
+                raise InvalidArgumentError(f"randomize[{field!r}] = {bounds!r}; allowed: a (low, high) pair of numbers")
             low, high = float(bounds[0]), float(bounds[1])
             if low > high:
-                raise ValueError(f"randomize[{field!r}] = {bounds!r}; allowed: an increasing (low, high) pair")
+                raise InvalidArgumentError(f"randomize[{field!r}] = {bounds!r}; "
+                                           "allowed: an increasing (low, high) pair")
             scene.replace({field: low})
             scene.replace({field: high})
             ranges.append((str(field), low, high))

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from typing import Any
 
 from netgym.arguments import is_real
+from netgym.errors import InvalidArgumentError
 
 
 class FrameClock:
@@ -25,7 +26,7 @@ class FrameClock:
 
     def __init__(self, period: float, anchor: float = 0.0) -> None:
         if not is_real(period) or not math.isfinite(period) or period <= 0.0:
-            raise ValueError(f"period = {period!r}; allowed: a finite number of seconds > 0")
+            raise InvalidArgumentError(f"period = {period!r}; allowed: a finite number of seconds > 0")
         self.period = float(period)
         self.restart(anchor)
 

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from enum import IntEnum
 
+from netgym.errors import InvalidArgumentError
+
 
 class _Labelled(IntEnum):
     @property
@@ -27,7 +29,7 @@ class _Labelled(IntEnum):
         for member in cls:
             if member.label == label:
                 return member
-        raise ValueError(f"{cls.__name__.lower()} = {label!r} is not one of {list(cls.labels())}")
+        raise InvalidArgumentError(f"{cls.__name__.lower()} = {label!r} is not one of {list(cls.labels())}")
 
 
 class Integrator(_Labelled):

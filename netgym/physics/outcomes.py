@@ -15,6 +15,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from netgym.errors import InvalidArgumentError
 from netgym.physics.opening import Opening
 
 class Reason(StrEnum):
@@ -103,5 +104,5 @@ _RULES: dict[str, CaptureRule] = {"held": HeldRule(), "line": LineRule()}
 def capture_rule(name: str) -> CaptureRule:
     """The rule a scene's ``capture_rule`` names (``"held"`` or ``"line"``)."""
     if name not in _RULES:
-        raise ValueError(f"capture_rule = {name!r} is not one of {list(_RULES)}")
+        raise InvalidArgumentError(f"capture_rule = {name!r} is not one of {list(_RULES)}")
     return _RULES[name]

@@ -18,7 +18,7 @@ import numpy as np
 
 from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import AirConfig, SceneConfig, load_scene
-from netgym.errors import NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
+from netgym.errors import InvalidArgumentError, NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
 from netgym.physics.forces import energies
 from netgym.physics.integration import RestTest, Workspace
 from netgym.physics.kinds import Integrator
@@ -206,10 +206,10 @@ class Simulator:
         v = vector_argument(velocity, "velocity")
         r = self.model.ball_radius
         if p[2] < r:
-            raise ValueError(f"position z = {p[2]:g} m puts the ball (radius {r:g} m) below the ground")
+            raise InvalidArgumentError(f"position z = {p[2]:g} m puts the ball (radius {r:g} m) below the ground")
         speed = float(np.linalg.norm(v))
         if speed > MAX_LAUNCH_SPEED:
-            raise ValueError(f"velocity has speed {np.format_float_positional(speed, trim='-')} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
+            raise InvalidArgumentError(f"velocity has speed {np.format_float_positional(speed, trim='-')} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
         s = self.state
         s.x = np.vstack([s.x, p])
         s.v = np.vstack([s.v, v])
@@ -252,7 +252,7 @@ class Simulator:
         n_steps = integer_argument(n_steps, "n_steps", 0)
         dt = self.dt if dt is None else dt
         if not (is_real(dt) and math.isfinite(dt) and dt > 0.0):
-            raise ValueError(f"dt = {dt!r}; allowed: a finite number of seconds > 0")
+            raise InvalidArgumentError(f"dt = {dt!r}; allowed: a finite number of seconds > 0")
         code = self.integrator if integrator is None else Integrator.parse(integrator)
         self.run(_request(Integrate(n_steps, code, float(dt))))
         self.awake = True
