@@ -20,6 +20,11 @@ from netgym.physics.opening import Opening
 AIR_PATH_STEP = 5e-3          # s between the points of a flight through air that the shaped reward measures
 AIR_PATH_TIME = 10.0          # s: the longest such flight
 
+LAUNCH_ENTRIES = (("speed", "launch speed", "m/s"), ("elevation", "elevation above the horizon", "degrees"),
+                  ("azimuth", "azimuth offset from the direction to the opening's centre", "degrees"))
+"""An action's entries in order: the :class:`~netgym.config.ThrowConfig` range each is mapped
+onto, what it sets and its unit."""
+
 
 @dataclass(frozen=True)
 class Thrower:
@@ -63,8 +68,9 @@ def from_range(value: float, bounds: tuple[float, float]) -> float:
 
 def action_to_launch(action: np.ndarray, cfg: ThrowConfig) -> tuple[float, float, float]:
     """(speed m/s, elevation degrees, azimuth offset degrees) of an action in [-1, 1]^3."""
-    return (to_range(float(action[0]), cfg.speed), to_range(float(action[1]), cfg.elevation),
-            to_range(float(action[2]), cfg.azimuth))
+    speed, elevation, azimuth = (to_range(float(a), getattr(cfg, field))
+                                 for a, (field, _, _) in zip(action, LAUNCH_ENTRIES))
+    return speed, elevation, azimuth
 
 
 def launch_velocity(speed: float, elevation: float, azimuth: float, thrower: Thrower) -> np.ndarray:

@@ -4,6 +4,7 @@ result files, no figures in docstrings, a README within its limits, a site that 
 from __future__ import annotations
 
 import ast
+import functools
 import os
 import re
 import shutil
@@ -15,6 +16,7 @@ import gymnasium as gym
 import pytest
 
 import netgym
+from netgym.launch import LAUNCH_ENTRIES
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "docs" / "_scripts"))
@@ -43,11 +45,61 @@ def test_every_registered_id_has_a_current_card_with_gymnasiums_sections() -> No
     assert env_cards.stale_pages() == []
 
 
-def test_a_card_shows_its_own_spaces_and_registration() -> None:
-    windy = env_cards.env_card("NetCatchWindy-v0")
-    assert "shape=(11,)" in windy and "`wind=(0.0, 3.0)`" in windy and "| Balls per episode | 5 |" in windy
-    pixels = env_cards.env_card("NetCatchPixels-v0")
-    assert "shape=(84, 84, 3)" in pixels and "thrower" in pixels.split("## Observation Space", 1)[1]
+@functools.cache
+def _card(env_id: str) -> str:
+    return env_cards.env_card(env_id)
+
+
+def _section(card: str, title: str) -> str:
+    return card.split(f"## {title}\n", 1)[1].split("\n## ", 1)[0]
+
+
+def _rows(text: str) -> list[list[str]]:
+    """The body rows of the markdown tables in ``text``, as cells."""
+    lines = [line for line in text.splitlines() if line.startswith("|")]
+    rule = re.compile(r"\|(\s*:?-+:?\s*\|)+$")
+    headers = {k - 1 for k, line in enumerate(lines) if rule.match(line)}
+    return [[cell.strip() for cell in line.strip("|").split("|")] for k, line in enumerate(lines)
+            if k not in headers and not rule.match(line)]
+
+
+def _shapes(text: str) -> set[tuple[int, ...]]:
+    """Every shape, ``(11,)`` or ``(84, 84, 3)``, named in ``text``."""
+    return {tuple(int(n) for n in found.split(",") if n.strip())
+            for found in re.findall(r"\((\d+(?:, \d+)*,?)\)", text)}
+
+
+@pytest.mark.parametrize("env_id", list(netgym.ENVIRONMENTS))
+def test_each_card_describes_its_own_env(env_id: str) -> None:
+    card, env = _card(env_id), gym.make(env_id)
+    base, observation_space = env.unwrapped, env.observation_space
+    header = card.split("\n## ", 1)[0]
+    assert not re.search(r"^\|\s*\|\s*\|$", header, re.M), "an empty header row"
+    observation = _section(card, "Observation Space")
+    header_row = next(line for line in header.splitlines() if line.startswith("| Observation Space |"))
+    for text in (header_row, observation):
+        assert _shapes(text) == {observation_space.shape} and str(observation_space.dtype) in text
+    if base.observation_space is observation_space:  # a vector: every entry named, with its bounds
+        rows = [row for row in _rows(observation) if row[0].isdigit()]
+        assert [row[1].strip("`") for row in rows] == list(base.observation_structure)
+        assert [float(row[-2]) for row in rows] == pytest.approx(observation_space.low.tolist())
+        assert [float(row[-1]) for row in rows] == pytest.approx(observation_space.high.tolist())
+    else:
+        assert str(observation_space) in observation
+    action = _section(card, "Action Space")
+    assert str(env.action_space) in action and str(env.action_space) in header
+    ranges = [tuple(float(x) for x in row[2].split(" to ")) for row in _rows(action) if row[0].isdigit()]
+    assert ranges == [tuple(getattr(base.scene.throw, field)) for field, _, _ in LAUNCH_ENTRIES]
+    noise, start = base.launch_noise, _section(card, "Starting State")
+    assert ("**Launch noise.**" in action) == (noise is not None)
+    if noise is not None:
+        assert all(f"{sd:g} " in action for sd in (noise.speed, noise.elevation, noise.azimuth))
+    assert ("**Wind.**" in start) == (base.wind_range is not None)
+    if base.wind_range is not None:
+        assert f"[{base.wind_range.low:g}, {base.wind_range.high:g}] m/s" in start
+    drawn = {row[0].strip("`"): (float(row[1]), float(row[2])) for row in _rows(start)}
+    assert drawn == ({} if base.randomize is None else {f: (lo, hi) for f, lo, hi in base.randomize.ranges})
+    env.close()
 
 
 def test_quoted_figures_match_their_result_files(tmp_path: Path) -> None:

@@ -23,7 +23,7 @@ sys.path[:0] = [str(DOCS.parent), str(DOCS / "_scripts")]
 
 import netgym  # noqa: E402
 from netgym.envs import NetCatchEnv  # noqa: E402
-from netgym.wrappers import ThrowerView  # noqa: E402
+from card_sections import action_section, observation_section, space_text, starting_state_section  # noqa: E402
 from griffe_roles import plain_roles  # noqa: E402
 from quotes import environments  # noqa: E402
 
@@ -49,23 +49,28 @@ def docstring_sections(cls: type) -> dict[str, str]:
     return {name: plain_roles(text) for name, text in sections.items()}
 
 
-def _kwargs_text(kwargs: dict) -> str:
+LONG_VALUE = 40
+"""Registered values whose text is longer than this are named, not written out, in a card's
+header table (its Arguments section writes them out)."""
+
+
+def _kwargs_text(kwargs: dict, short: bool = False) -> str:
+    """The registration's arguments as code; ``short``: long values left out."""
     if not kwargs:
-        return "none: every argument at its default below."
-    return ", ".join(f"`{name}={value!r}`" for name, value in kwargs.items())
+        return "none: every argument at its default below"
+    return ", ".join(f"`{name}` (under Arguments)" if short and len(repr(value)) > LONG_VALUE else f"`{name}={value!r}`"
+                     for name, value in kwargs.items())
 
 
 def env_card(env_id: str) -> str:
-    """The markdown page of ``env_id``: a header table, the poster and Gymnasium's eight sections."""
+    """The markdown page of ``env_id``: a header table, the poster and Gymnasium's eight sections,
+    the spaces and what the id varies read from the env it makes."""
     entry, spec = netgym.ENVIRONMENTS[env_id], gym.spec(env_id)
     env = gym.make(env_id)
     docs = docstring_sections(NetCatchEnv)
     missing = [name for name in SECTIONS if name not in docs and name != "Description"]
     if missing:
         raise ValueError(f"NetCatchEnv's docstring has no section {missing}: every env card needs them")
-    observation = docs["Observation Space"]
-    if any(isinstance(wrapper, ThrowerView) for wrapper in _wrappers(env)):
-        observation = plain_roles(inspect.getdoc(ThrowerView)) + "\n\nThe vector observation it replaces:\n\n" + observation
     poster = POSTERS / f"{env_id}.png"
     if not poster.is_file():
         raise FileNotFoundError(f"{env_id} has no poster {poster}: run python scripts/render_posters.py")
@@ -73,37 +78,28 @@ def env_card(env_id: str) -> str:
     lines = [
         f"# {env_id}", "",
         f"![{env_id}](../figures/envs/{env_id}.png)", "",
-        "| | |", "|---|---|",
+        "| property | value |", "|---|---|",
         f"| Make | `gymnasium.make(\"{env_id}\")` |",
         f"| Tests | {entry.tests} |",
-        f"| Action Space | `{env.action_space}` |",
-        f"| Observation Space | `Box(shape={env.observation_space.shape}, dtype={env.observation_space.dtype})`: "
-        f"{entry.observation} |",
+        f"| Action Space | `{space_text(env.action_space)}` |",
+        f"| Observation Space | `{space_text(env.observation_space)}`: {entry.observation} |",
         f"| Balls per episode | {balls} |",
         f"| Reward threshold | {spec.reward_threshold} |",
-        f"| Registered with | {_kwargs_text(entry.kwargs)} |",
+        f"| Registered with | {_kwargs_text(entry.kwargs, short=True)} |",
         f"| Entry point | `{spec.entry_point}` |", "",
         "## Description", "", f"**{env_id}**: {entry.tests}.", "", docs["Description"], "",
-        "## Action Space", "", docs["Action Space"], "",
-        "## Observation Space", "", observation, "",
+        "## Action Space", "", action_section(env, docs["Action Space"]), "",
+        "## Observation Space", "", observation_section(env, docs["Observation Space"]), "",
         "## Rewards", "", docs["Rewards"], "",
-        "## Starting State", "", docs["Starting State"], "",
-        "## Episode End", "", docs["Episode End"], "",
+        "## Starting State", "", starting_state_section(env, docs["Starting State"]), "",
+        "## Episode End", "", docs["Episode End"], f"On this id, `balls_per_episode` = {balls}.", "",
         "## Info", "", docs.get("Info", ""), "",
-        "## Arguments", "", f"This id is registered with {_kwargs_text(entry.kwargs)} Any argument below can be "
+        "## Arguments", "", f"This id is registered with {_kwargs_text(entry.kwargs)}. Any argument below can be "
         f"passed to `gymnasium.make(\"{env_id}\", ...)`.", "", docs["Arguments"], "",
         "## Version History", "", docs["Version History"], "",
     ]
     env.close()
     return "\n".join(lines).rstrip() + "\n"
-
-
-def _wrappers(env: gym.Env) -> list[gym.Env]:
-    chain = []
-    while isinstance(env, gym.Wrapper):
-        chain.append(env)
-        env = env.env
-    return chain
 
 
 def index_page() -> str:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from enum import IntEnum
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -15,6 +14,7 @@ from gymnasium import spaces
 from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError, InvalidArgumentError
+from netgym.envs.observation import ObservationIndex
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
 from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
@@ -26,22 +26,6 @@ from netgym.replay import Scenery, Snapshot
 REWARD_MODES = ("sparse", "shaped")
 FILMED_MODES = ("human", "rgb_array_list", "replay_list")   # render modes that take every frame of a throw
 RESET_OPTIONS = ("overrides", "thrower")
-
-
-class ObservationIndex(IntEnum):
-    """Where each quantity sits in a NetCatch-v0 observation (see :class:`NetCatchEnv`)."""
-
-    DISTANCE = 0        # horizontal distance from the thrower to the opening's centre (m)
-    HEIGHT = 1          # release height minus the opening centre's height (m)
-    BEARING_COS = 2     # cosine of the thrower's bearing around the net
-    BEARING_SIN = 3     # sine of the thrower's bearing
-    CAUGHT = 4          # balls caught so far / balls per episode
-    THROWS_LEFT = 5     # throws left / balls per episode
-    PILE_HEIGHT = 6     # highest caught ball (or the net's lowest point) minus the opening centre's height (m)
-    LAST_CAUGHT = 7     # feedback=True only: the previous throw was caught (0 or 1; 0 before the first)
-    LAST_OFFSET_U = 8   # feedback: where the previous throw crossed the opening's plane, minus its centre,
-    LAST_OFFSET_W = 9   # along the plane's two axes (m; world x and y for the basket)
-    LAST_SHORT = 10     # feedback: how far short of the opening's plane the previous throw stayed (m)
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
 SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
 
@@ -62,8 +46,8 @@ def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float, fee
 class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     """Throw balls so that a mass-spring goal net catches them.
 
-    A thrower stands at a random place around the net (default scene ``basket``: the seed's
-    open-top box net, 2 x 2 m opening at 3 m). Each step is one throw: the agent chooses the
+    A thrower stands at a random place around the net (default scene ``basket``: an open-top
+    box net, 2 x 2 m opening at 3 m). Each step is one throw: the agent chooses the
     launch speed, elevation and azimuth of a ball, and the simulator runs the throw until its
     outcome is decided. An episode is a sequence of throws into the same net; under the ``held``
     capture rule (the basket's) caught balls stay in it, so later throws meet a loaded, deformed
@@ -71,32 +55,16 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     ## Action space
 
-    ``Box(-1, 1, (3,), float32)``, each component mapped linearly onto the scene's range
-    (``[throw]`` in the scene file; values outside [-1, 1] are clipped):
-
-    | index | meaning | basket range |
-    |---|---|---|
-    | 0 | launch speed | 4 to 16 m/s |
-    | 1 | elevation above the horizon | 20 to 80 degrees |
-    | 2 | azimuth offset from the direction to the opening's centre | -20 to 20 degrees |
+    Three numbers in [-1, 1] (float32), each mapped linearly onto its range in the scene's
+    ``[throw]`` table (values outside [-1, 1] are clipped): the launch speed, the elevation above
+    the horizon and the azimuth offset from the direction to the opening's centre
+    (:data:`~netgym.launch.LAUNCH_ENTRIES`).
 
     ## Observation space
 
-    ``Box(low, high, (7,), float32)``; :class:`ObservationIndex` (also
-    ``env.observation_structure``) names the positions:
-
-    | index | meaning | unit |
-    |---|---|---|
-    | 0 | horizontal distance from the thrower to the opening's centre | m |
-    | 1 | release height minus the opening centre's height | m |
-    | 2 | cosine of the thrower's bearing around the net | - |
-    | 3 | sine of the thrower's bearing | - |
-    | 4 | balls caught so far / balls per episode | - |
-    | 5 | throws left / balls per episode | - |
-    | 6 | height of the highest caught ball, at rest, minus the opening centre's height (the net's lowest point when none) | m |
-    | 7 | ``feedback=True`` only: the previous throw was caught (0 or 1; 0 before the first) | - |
-    | 8, 9 | feedback: where the previous throw's free flight crossed the opening's plane, minus its centre, along the plane's two axes (world x, y for the basket; y, z for the goal), clipped to +-10 | m |
-    | 10 | feedback: how far short of the opening's plane that flight stayed (0 when it crossed) | m |
+    Numbers (float32) on the thrower, the balls caught and left and the pile in the net, and with
+    ``feedback=True`` on the previous throw: :class:`~netgym.envs.ObservationIndex` (also
+    ``env.observation_structure``) names each position and says what it is.
 
     ## Rewards
 

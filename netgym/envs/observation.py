@@ -1,0 +1,34 @@
+"""What each entry of a NetCatch observation vector is: its position, meaning and unit."""
+
+from __future__ import annotations
+
+from enum import IntEnum
+
+
+class ObservationIndex(IntEnum):
+    """Where each quantity sits in a NetCatch observation (``env.observation_structure`` maps
+    the lower-case names to these positions); each member's ``meaning`` and ``unit`` say what it
+    is. The ``LAST_*`` entries are there only with ``feedback=True``."""
+
+    meaning: str
+    unit: str
+
+    def __new__(cls, index: int, meaning: str, unit: str) -> ObservationIndex:
+        member = int.__new__(cls, index)
+        member._value_ = index
+        member.meaning, member.unit = meaning, unit
+        return member
+
+    DISTANCE = 0, "horizontal distance from the thrower to the opening's centre", "m"
+    HEIGHT = 1, "release height minus the opening centre's height", "m"
+    BEARING_COS = 2, "cosine of the thrower's bearing around the net", "-"
+    BEARING_SIN = 3, "sine of the thrower's bearing", "-"
+    CAUGHT = 4, "balls caught so far / balls per episode", "-"
+    THROWS_LEFT = 5, "throws left / balls per episode", "-"
+    PILE_HEIGHT = 6, ("height of the highest caught ball, at rest, minus the opening centre's height (the net's "
+                      "lowest point when none)"), "m"
+    LAST_CAUGHT = 7, "the previous throw was caught (0 or 1; 0 before the first)", "-"
+    LAST_OFFSET_U = 8, ("where the previous throw's free flight crossed the opening's plane, minus its centre, along "
+                        "the plane's first axis (world x for the basket, y for the goal)"), "m"
+    LAST_OFFSET_W = 9, "the same along the plane's second axis (world y for the basket, z for the goal)", "m"
+    LAST_SHORT = 10, "how far short of the opening's plane that flight stayed (0 when it crossed)", "m"
