@@ -8,6 +8,7 @@ the type and range declared on its dataclass field. A wrong field raises
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import tomllib
 import typing
@@ -256,8 +257,14 @@ def _convert(value: Any, hint: Any, name: str, f: dataclasses.Field) -> Any:
     return _scalar(value, hint, name, f)
 
 
+@functools.cache
+def _hints(cls: type) -> dict[str, Any]:
+    """The resolved type hints of a config class (resolving them is most of a validation's time)."""
+    return typing.get_type_hints(cls)
+
+
 def _build(cls: type, table: Mapping[str, Any], path: str) -> Any:
-    hints = typing.get_type_hints(cls)
+    hints = _hints(cls)
     names = [f.name for f in dataclasses.fields(cls)]
     prefix = f"{path}." if path else ""
     unknown = sorted(set(table) - set(names))

@@ -6,6 +6,7 @@ the rows after them are balls, in launch order. Kernels work on these flat float
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
@@ -18,7 +19,7 @@ from netgym.physics.contacts import Materials, Poles
 from netgym.physics.kinds import Contact, Integrator, SpringKind
 from netgym.physics.net import NetGeometry, build_net
 from netgym.physics.opening import Opening, OpeningRecord
-from netgym.physics.springs import Springs, kernel_indices
+from netgym.physics.springs import SpringLayout, Springs, kernel_indices
 
 
 def ball_drag_constant(config: SceneConfig) -> float:
@@ -130,11 +131,14 @@ class Model:
     integrator: Integrator
     ball_drag: float
     wind: np.ndarray
+    layout_hint: SpringLayout | None = dataclasses.field(default=None, compare=False, repr=False)
 
     @classmethod
-    def from_config(cls, config: SceneConfig) -> "Model":
-        """Build the model of a scene."""
-        geo = build_net(config.net)
+    def from_config(cls, config: SceneConfig, like: "Model | None" = None) -> "Model":
+        """Build the model of a scene (the net's geometry, and the layout of its springs for the
+        kernels, taken from ``like``, a model of a scene with the same net section, if given)."""
+        same_net = like is not None and like.config.net == config.net
+        geo = like.geometry if same_net else build_net(config.net)
         rest = np.linalg.norm(geo.positions[geo.springs[:, 0]] - geo.positions[geo.springs[:, 1]], axis=1)
         per_kind = np.array([[getattr(config.springs, k).ks, getattr(config.springs, k).kd] for k in SpringKind.labels()])
         params = np.column_stack([rest, per_kind[geo.spring_kind]])
@@ -167,13 +171,34 @@ class Model:
             integrator=Integrator.parse(config.simulation.integrator),
             ball_drag=ball_drag_constant(config),
             wind=np.array(config.air.wind, dtype=np.float64),
+            layout_hint=like.spring_layout[1] if same_net else None,
         )
+
+    def with_air(self, config: SceneConfig) -> "Model":
+        """This model under ``config``, a scene that differs from this one's at most in its air
+        (a wind drawn per episode): the net, its springs and the kernel's arrays are shared."""
+        if dataclasses.replace(self.config, air=config.air) != config:
+            raise ValueError("Model.with_air: the scenes differ in more than their air")
+        model = dataclasses.replace(self, config=config, ball_drag=ball_drag_constant(config),
+                                    wind=np.array(config.air.wind, dtype=np.float64))
+        model.__dict__["kernel"] = self.kernel._replace(ball_drag=model.ball_drag, wind=model.wind)  # cached_property's slot
+        return model
+
+    @functools.cached_property
+    def spring_layout(self) -> tuple[Springs, SpringLayout]:
+        """The springs as the kernels take them, and their layout (refilled from the
+        ``layout_hint`` of a model of the same net where that serves)."""
+        if self.layout_hint is not None:
+            springs = self.layout_hint.refill(self.spring_params)
+            if springs is not None:
+                return springs, self.layout_hint
+        return Springs.laid_out(self.springs, self.spring_params, self.n_net)
 
     @functools.cached_property
     def kernel(self) -> KernelModel:
         """The arrays and constants the kernels need, as one record; its springs a
         :class:`~netgym.physics.springs.Springs`."""
-        springs = Springs.of(self.springs, self.spring_params, self.n_net)
+        springs = self.spring_layout[0]
         return KernelModel(self.n_net, springs, kernel_indices(self.segments), self.segment_start, self.poles,
                            Materials.of_table(self.contact), self.restitution_threshold, self.gravity, self.drag,
                            self.ball_radius, self.opening.kernel_record(), self.ball_drag, self.wind)

@@ -59,6 +59,17 @@ class Energy:
 
 
 @dataclass(frozen=True)
+class PreparedNet:
+    """What a simulator would otherwise work out for its net: its settled ``positions`` and the
+    ``modes`` of the net at its own inertia and ``settle_modes`` at the pause's (for nets drawn
+    per episode, see :mod:`~netgym.physics.net_family`)."""
+
+    positions: np.ndarray
+    modes: NetModes
+    settle_modes: NetModes
+
+
+@dataclass(frozen=True)
 class Checkpoint:
     """A simulator's state, awake flag and work counters at one moment."""
 
@@ -99,6 +110,10 @@ class Simulator:
     :param check_stability: refuse an explicit integrator whose ``dt`` is beyond the linear
         stability limit estimated for this net, linearised about its built shape (raises
         :class:`UnstableTimeStepError`).
+    :param like: a simulator of a scene that may differ from this one's only in its air (a wind
+        drawn per episode); where it does, its net and kernel arrays are shared, not built again.
+    :param prepared: the settled net and its modes, worked out already (a
+        :class:`PreparedNet`); else the net is settled and analysed here (both cached per scene).
 
     ``awake`` is False while the net and the balls in it are at rest (a throw then need not
     integrate them while its ball flies far from them); any integration wakes the scene.
@@ -107,19 +122,22 @@ class Simulator:
     """
 
     def __init__(self, scene: SceneConfig | str | Path = "basket",
-                 overrides: Mapping[str, Any] | None = None, check_stability: bool = True) -> None:
+                 overrides: Mapping[str, Any] | None = None, check_stability: bool = True,
+                 like: "Simulator | None" = None, prepared: PreparedNet | None = None) -> None:
         config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
         if overrides:
             config = config.replace(overrides)
         self.config = config
-        self.model = Model.from_config(config)
+        same_net = like is not None and _without_air(like.config) == _without_air(config)
+        self.model = (like.model.with_air(config) if same_net
+                      else Model.from_config(config, None if like is None else like.model))
         self.state = State.at_rest(self.model)
         self.counters = new_counters()
         self.workspace = Workspace()
         self.awake = False
         self.capture_rule: CaptureRule = capture_rule(config.capture_rule)
         self.film: Film | None = None
-        self.modes = self._net_modes()
+        self.modes = self._net_modes() if prepared is None else prepared.modes
         self.stable_dt = stable_dt(self.integrator, self.modes)
         if check_stability and self.dt > self.stable_dt:
             raise UnstableTimeStepError(
@@ -129,10 +147,10 @@ class Simulator:
                 f"dt <= {self.stable_dt:.3g} s, or integrator = {_stabler_than(self.integrator)}")
         self.settle_integrator = Integrator.parse(config.simulation.settle_integrator)
         self.settle_inertia = config.simulation.settle_inertia
-        self.settle_modes = self._net_modes(self.settle_inertia)
+        self.settle_modes = self._net_modes(self.settle_inertia) if prepared is None else prepared.settle_modes
         self.settle_dt = min(config.simulation.settle_dt,
                              SETTLE_STABILITY_SHARE * stable_dt(self.settle_integrator, self.settle_modes))
-        self.state = State.at_rest(self.model, self._settled_positions())
+        self.state = State.at_rest(self.model, self._settled_positions() if prepared is None else prepared.positions)
         self._rest_state = self.state.copy()
 
     # ------------------------------------------------------------------ scene and state access
@@ -391,7 +409,7 @@ class Simulator:
     def _settled_positions(self) -> np.ndarray:
         """The net at rest under gravity (cached per scene config; air acts on balls only, so
         scenes that differ only in their air share it)."""
-        key = dataclasses.replace(self.config, air=AirConfig())
+        key = _without_air(self.config)
         if key not in _SETTLED:
             progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
             speed = min(NEW_NET_SETTLE_SPEED, self.config.simulation.settle_speed)
@@ -412,6 +430,17 @@ class Simulator:
                 progress.close()
             _SETTLED[key] = self.state.x.copy()
         return _SETTLED[key]
+
+
+def settled_positions(config: SceneConfig) -> np.ndarray:
+    """The net of ``config`` settled from scratch under gravity (cached per scene)."""
+    return Simulator(config).state.x.copy()
+
+
+def _without_air(config: SceneConfig) -> SceneConfig:
+    """``config`` with the default air: what the net, its settling and its springs depend on
+    (air acts on balls only)."""
+    return dataclasses.replace(config, air=AirConfig())
 
 
 def _stabler_than(integrator: int) -> str:

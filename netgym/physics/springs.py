@@ -101,6 +101,12 @@ class Springs(NamedTuple):
         Each pair names two different particles (a pair's order does not change its force) and no
         pair comes twice; the kernels' results are those of a loop over the springs sorted by
         (smaller, larger) particle index."""
+        return cls.laid_out(pairs, params, n_particles)[0]
+
+    @classmethod
+    def laid_out(cls, pairs: np.ndarray, params: np.ndarray, n_particles: int) -> tuple["Springs", "SpringLayout"]:
+        """:meth:`of`, and the :class:`SpringLayout` that refills the record with other
+        stiffness and damping."""
         pairs = np.sort(np.asarray(pairs, dtype=np.int64).reshape(-1, 2), axis=1)
         params = np.asarray(params, dtype=np.float64).reshape(-1, 3)
         if len(pairs) != len(params):
@@ -112,19 +118,68 @@ class Springs(NamedTuple):
         order = np.lexsort((pairs[:, 1], pairs[:, 0]))
         pairs, params = pairs[order], params[order]
         wavefront = wavefront_order(pairs, n_particles)
-        groups, stiffness, dense, sparse = _offset_groups(pairs, params)
+        groups, stiffness, dense, sparse, members = _offset_groups(pairs, params)
         dense_slots = sum(block.shape[1] for block in dense)
         dense_params = aligned_zeros((2, dense_slots))
         if dense:
             dense_params[:] = np.concatenate(dense, axis=1)
         sparse_pairs = np.concatenate([p for p, _ in sparse]) if sparse else np.zeros((0, 2), dtype=np.int64)
         sparse_params = np.concatenate([q for _, q in sparse]) if sparse else np.zeros((0, 3))
-        return cls(n_particles, kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
-                   np.array(groups, dtype=np.uint64).reshape(-1, 5),
-                   np.array(stiffness, dtype=np.float64).reshape(-1, 2), dense_params,
-                   kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
-                   aligned_zeros((6, dense_slots)), np.zeros((4, len(sparse_pairs))),
-                   aligned_zeros((9, _round_up(n_particles, LANES) + LANES)))
+        springs = cls(n_particles, kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
+                      np.array(groups, dtype=np.uint64).reshape(-1, 5),
+                      np.array(stiffness, dtype=np.float64).reshape(-1, 2), dense_params,
+                      kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
+                      aligned_zeros((6, dense_slots)), np.zeros((4, len(sparse_pairs))),
+                      aligned_zeros((9, _round_up(n_particles, LANES) + LANES)))
+        return springs, SpringLayout.of(springs, order, wavefront, members)
+
+    def scratch_copy(self) -> "Springs":
+        """The record with scratch arrays of its own (the rest shared)."""
+        return self._replace(dense_forces=aligned_zeros(self.dense_forces.shape),
+                             sparse_forces=np.zeros(self.sparse_forces.shape), columns=aligned_zeros(self.columns.shape))
+
+
+class SpringLayout(NamedTuple):
+    """Where each spring of a list given to :meth:`Springs.laid_out` lies in its record, to
+    refill the record with other stiffness and damping for the same pairs (nets drawn per
+    episode): the ``template`` record, the list's rows in the record's ``params`` order
+    (``kernel_rows``) and in its ``sparse_params`` order (``sparse_rows``), and for each dense
+    group its member rows (``dense_members``, the group of each in ``member_group``) and one
+    of them (``representatives``, -1 for a sparse group)."""
+
+    template: Springs
+    kernel_rows: np.ndarray
+    sparse_rows: np.ndarray
+    dense_members: np.ndarray
+    member_group: np.ndarray
+    representatives: np.ndarray
+
+    @classmethod
+    def of(cls, springs: Springs, order: np.ndarray, wavefront: np.ndarray, members: list[np.ndarray]) -> "SpringLayout":
+        """The layout of ``springs``, built from the list's rows sorted by ``order``, then put in
+        ``wavefront`` order, and grouped into ``members`` (sorted rows of each group)."""
+        dense = springs.groups[:, 4] == 1
+        sparse = [order[rows] for rows, is_dense in zip(members, dense) if not is_dense]
+        grouped = [(g, order[rows]) for g, (rows, is_dense) in enumerate(zip(members, dense)) if is_dense]
+        return cls(springs, order[wavefront], np.concatenate(sparse) if sparse else np.zeros(0, dtype=np.int64),
+                   np.concatenate([rows for _, rows in grouped]) if grouped else np.zeros(0, dtype=np.int64),
+                   np.concatenate([np.full(len(rows), g) for g, rows in grouped]) if grouped else np.zeros(0, dtype=np.int64),
+                   np.array([order[rows[0]] if is_dense else -1 for rows, is_dense in zip(members, dense)], dtype=np.int64))
+
+    def refill(self, params: np.ndarray) -> Springs | None:
+        """The record of the same pairs with ``params`` (in the list's order), with scratch of its
+        own; None if the springs of a dense group no longer share one stiffness and damping
+        (then build it with :meth:`Springs.of`). Its forces are those :meth:`Springs.of` gives:
+        a dense group only needs one stiffness and damping, whatever others share it."""
+        params = np.asarray(params, dtype=np.float64)
+        if not np.array_equal(params[self.dense_members, 1:], params[self.representatives[self.member_group], 1:]):
+            return None
+        group_params = np.zeros_like(self.template.group_params)
+        dense = self.representatives >= 0
+        group_params[dense] = params[self.representatives[dense], 1:]
+        return self.template.scratch_copy()._replace(params=np.ascontiguousarray(params[self.kernel_rows]),
+                                                     group_params=group_params,
+                                                     sparse_params=np.ascontiguousarray(params[self.sparse_rows]))
 
 
 def aligned_zeros(shape: tuple[int, int]) -> np.ndarray:
@@ -142,17 +197,18 @@ def _round_up(n: int, multiple: int) -> int:
     return -(-n // multiple) * multiple
 
 
-def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, list, list]:
+def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, list, list, list]:
     """The groups of :class:`Springs` in increasing offset (one per offset, stiffness and
     damping): their table rows, their (ks, kd) (zero for sparse groups), the dense groups'
-    parameter blocks (their lengths multiples of :data:`LANES`) and the sparse groups' (pairs,
-    params)."""
+    parameter blocks (their lengths multiples of :data:`LANES`), the sparse groups' (pairs,
+    params) and each group's rows of ``pairs``."""
     offsets = pairs[:, 1] - pairs[:, 0]
     keys, key_of = np.unique(np.column_stack([offsets, params[:, 1:]]), axis=0, return_inverse=True)
-    groups, stiffness, dense, sparse = [], [], [], []
+    groups, stiffness, dense, sparse, members = [], [], [], [], []
     dense_used = sparse_used = 0
     for k, (offset, ks, kd) in enumerate(keys):
         rows = np.flatnonzero(key_of.reshape(-1) == k)
+        members.append(rows)
         first = pairs[rows, 0]
         lo, span = int(first.min()), int(first.max() - first.min() + 1)
         if len(rows) >= DENSE_MIN_SPRINGS and len(rows) >= DENSE_FILL * span:
@@ -170,4 +226,4 @@ def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, l
             stiffness.append((0.0, 0.0))
             sparse.append((pairs[rows], params[rows]))
             sparse_used += len(rows)
-    return groups, stiffness, dense, sparse
+    return groups, stiffness, dense, sparse, members
