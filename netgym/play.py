@@ -1,7 +1,7 @@
-"""Play NetCatch-v0 yourself, as the seed's own program let you: aim, throw, watch the net.
+"""Play NetCatch-v0 yourself: aim, throw, watch the net.
 
 ``python -m netgym.play [--scene goal] [--balls 5] [--seed 0]`` opens a window (``render``
-extra). Keys:
+extra); without a display it says so and exits. Keys:
 
 | key | does |
 |---|---|
@@ -20,12 +20,13 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 from typing import Any
 
 import numpy as np
 
 from netgym.envs import NetCatchEnv
-from netgym.launch import to_range
+from netgym.launch import action_to_launch
 
 STEP = 0.05   # change of an action component per key press (the action spans [-1, 1])
 
@@ -50,8 +51,7 @@ class Play:
 
     def title(self) -> str:
         """The aim and the score, for the window title."""
-        t = self.env.scene.throw
-        speed, elevation, azimuth = (to_range(float(a), r) for a, r in zip(self.action, (t.speed, t.elevation, t.azimuth)))
+        speed, elevation, azimuth = action_to_launch(self.action, self.env.scene.throw)
         return (f"NetCatch: speed {speed:.1f} m/s, elevation {elevation:.0f} deg, aim {azimuth:+.0f} deg | "
                 f"caught {self.caught}/{self.throws} of {self.env.balls_per_episode} | space: throw, R: new, Esc: quit")
 
@@ -90,6 +90,21 @@ class Play:
         self.env.close()
 
 
+def display_problem() -> str | None:
+    """Why no window can open here, or None: on Linux no display named in the environment, or
+    else SDL's video failing to start."""
+    named = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
+    if sys.platform.startswith("linux") and not any(os.environ.get(name) for name in named):
+        return "neither DISPLAY nor WAYLAND_DISPLAY is set"
+    import pygame
+
+    try:
+        pygame.display.init()
+    except pygame.error as error:
+        return f"SDL's video did not start ({error})"
+    return None
+
+
 def main() -> None:
     """Parse arguments and play."""
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -98,6 +113,10 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=None)
     args = parser.parse_args()
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    problem = display_problem()
+    if problem is not None:
+        sys.exit(f"python -m netgym.play needs a display for its window: {problem}. "
+                 "Run it on a desktop session (or over ssh -X).")
     Play(args.scene, args.balls, args.seed).run()
 
 

@@ -238,7 +238,7 @@ class Renderer:
         import pygame
 
         if self._window is None:
-            pygame.init()
+            pygame.display.init()  # the window only: no audio, whose drivers warn where there is no sound card
             pygame.display.set_caption("NetCatch-v0")
             self._window = pygame.display.set_mode((frame.shape[1], frame.shape[0]))
             self._clock = pygame.time.Clock()

@@ -3,13 +3,20 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 
+import numpy as np
 import pytest
 
 pygame = pytest.importorskip("pygame")
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 
+from netgym.physics.simulator import Simulator  # noqa: E402
 from netgym.play import STEP, Play  # noqa: E402
+from netgym.render import Renderer  # noqa: E402
+
+DISPLAY_VARIABLES = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
 
 
 def _key(key: int):
@@ -36,3 +43,19 @@ def test_keys_aim_throw_score_and_quit() -> None:
     play.handle(_key(pygame.K_ESCAPE))
     assert not play.running
     play.env.close()
+
+
+@pytest.mark.parametrize("setting", [{}, {"SDL_VIDEODRIVER": "x11"}], ids=["no display named", "SDL video fails"])
+def test_play_without_a_display_says_so_and_exits(setting: dict[str, str]) -> None:
+    env = {k: v for k, v in os.environ.items() if k not in DISPLAY_VARIABLES} | setting
+    result = subprocess.run([sys.executable, "-m", "netgym.play"], env=env, capture_output=True, text=True, timeout=60)
+    assert result.returncode != 0
+    assert "netgym.play needs a display" in result.stderr and "ALSA" not in result.stdout + result.stderr
+
+
+def test_the_window_starts_no_audio(basket: Simulator, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("SDL_AUDIODRIVER", "dummy")  # audio that would start anywhere, sound card or not
+    renderer = Renderer(basket, 32, 24, human=True, supersample=1)
+    renderer.show(np.zeros((24, 32, 3), dtype=np.uint8))
+    assert pygame.display.get_init() and not pygame.mixer.get_init()
+    renderer.close()
