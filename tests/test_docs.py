@@ -10,6 +10,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import gymnasium as gym
@@ -154,6 +155,15 @@ def test_readme_is_an_entry_point() -> None:
     assert not re.search(r"\b20\d\d-\d\d-\d\d\b|this (?:\d-core )?machine|experiment/|branch", text)
     for link in re.findall(r"\]\(((?:docs/)[^)#]+)", text):
         assert (ROOT / link).exists(), link
+
+
+def test_every_module_the_readme_runs_is_the_standard_librarys_ours_or_in_an_extra() -> None:
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())
+    ours = {pattern.rstrip("*") for pattern in project["tool"]["setuptools"]["packages"]["find"]["include"]}
+    extras = {re.match(r"[\w.-]+", requirement).group(0).lower().replace("-", "_")
+              for requirements in project["project"]["optional-dependencies"].values() for requirement in requirements}
+    run = {module.split(".")[0] for module in re.findall(r"python -m ([\w.]+)", (ROOT / "README.md").read_text())}
+    assert run - set(sys.stdlib_module_names) - ours - extras == set()
 
 
 @pytest.mark.slow
