@@ -34,7 +34,7 @@ from agents.warm_up import compile_kernels
 from netgym.bench.results import write_results
 
 AGENTS = {
-    "ballistic oracle (blind to the wind)": lambda env: BallisticOracle(env.scene),
+    "ballistic oracle": lambda env: BallisticOracle(env.scene),
     "informed oracle (knows the wind)": InformedOracle,
     "adaptive oracle (uses the feedback)": lambda env: AdaptiveOracle(env.scene),
     "constant action (10 m/s, 50 degrees, straight)": lambda env: ConstantAction(),
@@ -44,8 +44,16 @@ AGENTS = {
         lambda env: FrameStackPolicy(load_policy(PRETRAINED_WINDY_STACKED), 5),
 }
 VARIANTS = {"NetCatchWindy-v0": list(AGENTS),  # the windy PPO model was trained on NetCatchWindy-v0
-            "NetCatchNoisy-v0": ["ballistic oracle (blind to the wind)", "random"],
-            "NetCatchRandomized-v0": ["ballistic oracle (blind to the wind)", "random"]}
+            "NetCatchNoisy-v0": ["ballistic oracle", "random"],
+            "NetCatchRandomized-v0": ["ballistic oracle", "random"]}
+WIND_REMARKS = {"ballistic oracle": "blind to the wind"}
+"""What an agent's label adds on a variant with wind."""
+
+
+def label(variant: str, agent: str) -> str:
+    """``agent``'s label in ``variant``'s rows: with its remark on the wind where the variant has wind."""
+    remark = WIND_REMARKS.get(agent) if gym.spec(variant).kwargs.get("wind") is not None else None
+    return agent if remark is None else f"{agent} ({remark})"
 
 
 class ConstantAction:
@@ -61,7 +69,7 @@ def _row(job: tuple[str, str, int]) -> dict:
     kwargs = gym.spec(variant).kwargs
     start = time.perf_counter()
     rate = evaluate(AGENTS[agent], episodes, seed=10_000, progress=f"{variant} {agent}", **kwargs)
-    return {"variant": variant, "agent": agent, **dataclasses.asdict(rate),
+    return {"variant": variant, "agent": label(variant, agent), **dataclasses.asdict(rate),
             "throws_per_s": rate.throws / (time.perf_counter() - start)}
 
 
