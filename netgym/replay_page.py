@@ -30,6 +30,21 @@ GROUND_COLOUR = "rgb(96, 150, 88)"
 SKY_COLOUR = "rgb(215, 230, 245)"
 EYE_DISTANCE = 0.9      # of the scene box's longest side, from its centre
 MOVING_TRACES = [2, 3, 4, 5]   # net, balls, thrower's limbs, thrower's head; 0 and 1 (ground, poles) stay
+SLIDER_PAD = 50          # px from the scene's bottom to the time slider's row (its "t = ..." label, its rail)
+BUTTONS_PAD = 10         # px from the scene's bottom to the Play/Pause row, above the slider's
+PAGE = """<!doctype html>
+<html>
+<head>
+<meta charset="utf-8">
+<title>netgym episode replay</title>
+<style>html, body {{height: 100%; margin: 0;}}</style>
+</head>
+<body>
+{figure}
+</body>
+</html>
+"""
+"""The page around the figure: the figure fills the window, which never scrolls."""
 
 
 def net_strings(segments: np.ndarray, positions: np.ndarray) -> np.ndarray:
@@ -158,15 +173,17 @@ def _static(scenery: Scenery, low: np.ndarray, high: np.ndarray) -> list[dict]:
 
 
 def _controls(names: list[str], times: list[float], duration: float) -> tuple[list[dict], list[dict]]:
-    """Play/pause buttons and the time slider."""
+    """Play/pause buttons and the time slider, on rows of their own (the buttons first, the slider
+    under them across the page's width), so that they never overlap however narrow the page."""
     still = {"mode": "immediate", "frame": {"duration": 0, "redraw": True}, "transition": {"duration": 0}}
     buttons = [{"type": "buttons", "direction": "left", "x": 0.0, "y": 0.0, "xanchor": "left", "yanchor": "top",
-                "pad": {"t": 40, "r": 10}, "showactive": False,
+                "pad": {"t": BUTTONS_PAD, "l": 10}, "showactive": False,
                 "buttons": [{"label": "Play", "method": "animate",
                              "args": [None, {"frame": {"duration": duration, "redraw": True}, "fromcurrent": True,
                                              "transition": {"duration": 0}}]},
                             {"label": "Pause", "method": "animate", "args": [[None], still]}]}]
-    slider = [{"active": 0, "x": 0.12, "y": 0.0, "len": 0.88, "yanchor": "top", "pad": {"t": 30}, "ticklen": 3,
+    slider = [{"active": 0, "x": 0.0, "y": 0.0, "len": 1.0, "yanchor": "top",
+               "pad": {"t": SLIDER_PAD, "l": 10, "r": 10}, "ticklen": 3,
                "font": {"color": "rgba(0, 0, 0, 0)"},   # one step a frame: too many labels to show
                "currentvalue": {"prefix": "t = ", "suffix": " s", "font": {"color": "rgb(40, 40, 40)"}},
                "steps": [{"label": f"{t:.2f}", "method": "animate", "args": [[name], still]}
@@ -198,7 +215,8 @@ def write_replay_page(snapshots: Sequence[Snapshot], path: str | Path, fps: int,
                                 1000.0 * len(snapshots) / fps / len(kept))
     axis = {"visible": False}
     layout = {"title": {"text": captions[kept[0]], "x": 0.02, "font": {"size": 18}},
-              "margin": {"l": 0, "r": 0, "t": 50, "b": 90}, "showlegend": False, "uirevision": "replay",
+              "margin": {"l": 0, "r": 0, "t": 50, "b": 0},  # plotly widens "b" to fit the buttons and the slider
+              "showlegend": False, "uirevision": "replay",
               "scene": {"xaxis": {**axis, "range": [low[0], high[0]]}, "yaxis": {**axis, "range": [low[1], high[1]]},
                         "zaxis": {**axis, "range": [low[2], high[2]]}, "bgcolor": SKY_COLOUR,
                         "aspectmode": "manual", "aspectratio": dict(zip("xyz", ratio.tolist())),
@@ -208,6 +226,7 @@ def write_replay_page(snapshots: Sequence[Snapshot], path: str | Path, fps: int,
     figure = {"data": _static(scenery, low, high) + frames[0]["data"], "layout": layout, "frames": frames}
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    plotly.io.write_html(figure, str(path), include_plotlyjs=True, auto_play=False, validate=False,
-                         config={"displaylogo": False}, full_html=True, default_height="96vh")
+    html = plotly.io.to_html(figure, include_plotlyjs=True, auto_play=False, validate=False,
+                             config={"displaylogo": False}, full_html=False, default_height="100%")
+    path.write_text(PAGE.format(figure=html), encoding="utf-8")
     return path

@@ -172,6 +172,13 @@ def test_the_docs_site_builds_with_warnings_as_errors(tmp_path: Path) -> None:
                             capture_output=True, text=True, timeout=600,
                             env={**os.environ, "NO_MKDOCS_2_WARNING": "1"})
     assert result.returncode == 0, result.stderr[-3000:]
-    assert (tmp_path / "site" / "environments" / "NetCatchWindy-v0" / "index.html").is_file()
-    api = (tmp_path / "site" / "api" / "index.html").read_text()
+    site = tmp_path / "site"
+    assert (site / "environments" / "NetCatchWindy-v0.html").is_file()
+    api = (site / "api.html").read_text()
     assert "NetCatchEnv" in api and "ThrowResult" in api
+    pages = [page for page in site.rglob("*.html")  # 404.html: a web server's page, linked from its root
+             if 'name="generator" content="mkdocs' in page.read_text() and page.name != "404.html"]
+    assert len(pages) > len(netgym.ENVIRONMENTS)
+    for page in pages:  # opened from disk, every link of MkDocs' pages leads to a file, not a folder's listing
+        for link in re.findall(r'(?:href|src)="(?![a-z]+:)([^"#?]+)', page.read_text()):
+            assert (page.parent / link).is_file(), f"{page.relative_to(site)}: {link}"

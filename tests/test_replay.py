@@ -91,33 +91,40 @@ def test_a_page_needs_snapshots_and_the_wrapper_the_matching_mode(tmp_path: Path
         RecordEpisodeVideo(gym.make("NetCatch-v0", render_mode="rgb_array_list"), tmp_path, video_format="webm")
 
 
+def _chromium(page: Path, *args: str, width: int = 1000) -> str:
+    """Open ``page`` in headless Chromium, ``width`` x 800 pixels, with ``args``; its stdout."""
+    with tempfile.TemporaryDirectory() as profile:
+        return subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+                               "--disable-quic", "--no-first-run", "--disable-background-networking",
+                               "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}", *args,
+                               f"--window-size={width},800", "--virtual-time-budget=15000", page.resolve().as_uri()],
+                              check=True, capture_output=True, text=True, timeout=120).stdout
+
+
 def screenshot(page: Path, png: Path) -> np.ndarray:
     """A 1000 x 800 screenshot of ``page`` in headless Chromium, as an (H, W, 3) array."""
     from PIL import Image
 
-    with tempfile.TemporaryDirectory() as profile:
-        subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-                        "--disable-quic", "--no-first-run", "--disable-background-networking",
-                        "--disable-component-update", "--disable-sync", f"--user-data-dir={profile}",
-                        f"--screenshot={png}", "--window-size=1000,800", "--virtual-time-budget=15000",
-                        page.resolve().as_uri()], check=True, capture_output=True, timeout=120)
+    _chromium(page, f"--screenshot={png}")
     with Image.open(png) as image:
         return np.asarray(image.convert("RGB")).astype(int)
+
+
+def near(colour: str, region: np.ndarray, tolerance: int = 30) -> int:
+    """How many pixels of ``region`` are within ``tolerance`` of ``colour`` ("rgb(r, g, b)")."""
+    rgb = np.array([int(v) for v in re.findall(r"\d+", colour)])
+    return int(np.sum(np.abs(region - rgb).max(axis=-1) <= tolerance))
 
 
 @pytest.mark.slow
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not on PATH (apt-get install chromium)")
 def test_page_shows_the_net_in_a_browser(page: Path, tmp_path: Path) -> None:
     """Opened from a file:// URL with no network, the page draws the 3D scene: the sky-coloured
-    scene, the dark net strings in its middle, the red poles, the green ground."""
+    scene, the dark net strings in its middle, the red poles, the green ground; the scene fills
+    the window to its edge (no margin, no scrollbar)."""
     from netgym.replay_page import GROUND_COLOUR, NET_COLOUR, POLE_COLOUR, SKY_COLOUR
 
     image = screenshot(page, tmp_path / "replay.png")
-
-    def near(colour: str, region: np.ndarray, tolerance: int = 30) -> int:
-        rgb = np.array([int(v) for v in re.findall(r"\d+", colour)])
-        return int(np.sum(np.abs(region - rgb).max(axis=-1) <= tolerance))
-
     scene = image[80:540, 20:980]
     assert len(np.unique(scene.reshape(-1, 3), axis=0)) > 50            # not blank
     assert near(SKY_COLOUR, scene, 5) > 0.3 * scene.shape[0] * scene.shape[1]
@@ -125,3 +132,24 @@ def test_page_shows_the_net_in_a_browser(page: Path, tmp_path: Path) -> None:
     assert near(POLE_COLOUR, scene, 40) > 500
     middle = image[200:500, 300:700]
     assert near(NET_COLOUR, middle) > 1500                              # the net's strings
+    edge = image[80:200, -3:]
+    assert near(SKY_COLOUR, edge, 5) == edge.shape[0] * edge.shape[1]
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not on PATH (apt-get install chromium)")
+def test_the_controls_keep_apart_on_a_narrow_page(page: Path) -> None:
+    """On a page 480 pixels wide, the Play/Pause buttons and the time slider (its "t = ..."
+    label, its rail) do not overlap, as plotly lays them out."""
+    dom = _chromium(page, "--dump-dom", width=480)
+    number = r"([\d.]+)"
+    buttons = [(float(x), float(y), float(x) + float(w), float(y) + float(h)) for x, y, w, h in re.findall(
+        rf'class="updatemenu-button" transform="translate\({number},{number}\)"><rect[^>]* width="{number}" '
+        rf'height="{number}"', dom)]
+    x, y = map(float, re.search(rf'class="slider-group" transform="translate\({number},{number}\)"', dom).groups())
+    width, height, top = map(float, re.search(rf'class="slider-rail-touch-rect" width="{number}" height="{number}" '
+                                              rf'opacity="0" transform="translate\(0,{number}\)"', dom).groups())
+    slider = (x, y, x + width, y + top + height)
+    assert len(buttons) == 2
+    for left, upper, right, lower in buttons:
+        assert right <= slider[0] or left >= slider[2] or lower <= slider[1] or upper >= slider[3]
