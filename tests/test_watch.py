@@ -1,5 +1,6 @@
 """The throw's compiled loops change nothing: integrating chunk after chunk in one kernel call
-(watch.integrate_watched) and flying the approach's pieces in one (approach.approach) give,
+(watch.integrate_watched) and flying the approach's pieces in one (approach.approach, and
+approach.approach_through_air through air) give,
 bit for bit, the throws that decide after every chunk and fly every piece in Python; and the
 rest window keeps what the rest test needs."""
 
@@ -35,12 +36,20 @@ SPECIAL = {  # throws decided on the net, on the ground, flying off the rim, lan
 }
 
 
-@pytest.mark.parametrize(("scene", "overrides"), [("basket", None), ("goal", None), ("goal", {"capture_rule": "held"})])
-def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str, overrides, monkeypatch) -> None:
-    """Under ``held`` the goal's roof holds a ball that comes to rest there while the loop runs."""
+WINDY = {"air.density": 1.2, "air.wind": [1.5, -1.0, 0.0]}
+TIME = 7   # where the approach kernels take the time they start from
+
+
+@pytest.mark.parametrize(("scene", "overrides", "flight"),
+                         [("basket", None, "approach"), ("goal", None, "approach"),
+                          ("goal", {"capture_rule": "held"}, "approach"), ("basket", WINDY, "approach_through_air")])
+def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str, overrides, flight: str,
+                                                                      monkeypatch) -> None:
+    """Under ``held`` the goal's roof holds a ball that comes to rest there while the loop runs;
+    through air, the pieces are flown by ``approach_through_air``."""
     launches = SPECIAL[scene] + sample_throws(scene, 16, seed=11)
     calls = {"watched": 0, "pieces": 0}
-    kernel, fly = throws.Watched, approach.approach
+    kernel, fly = throws.Watched, getattr(approach, flight)
 
     def watched(integrator, dt, watch):
         calls["watched"] += 1
@@ -48,11 +57,11 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
 
     def pieces(*args):
         time = fly(*args)
-        calls["pieces"] += time != args[-1]
+        calls["pieces"] += time != args[TIME]
         return time
 
     monkeypatch.setattr(throws, "Watched", watched)
-    monkeypatch.setattr(approach, "approach", pieces)
+    monkeypatch.setattr(approach, flight, pieces)
     compiled = _throw_all(Simulator(scene, overrides), launches)
     assert calls["watched"] > 0 and calls["pieces"] > 0  # both loops took part
 
@@ -62,7 +71,7 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
         return Integrate(min(watch.chunk, round((watch.deadline - sim.state.time) / dt)), integrator, dt)
 
     monkeypatch.setattr(throws, "Watched", one_chunk)
-    monkeypatch.setattr(approach, "approach", lambda *args: args[-1])  # no piece flown in the kernel
+    monkeypatch.setattr(approach, flight, lambda *args: args[TIME])  # no piece flown in the kernel
     assert _throw_all(sim, launches) == compiled
 
 

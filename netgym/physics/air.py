@@ -139,9 +139,11 @@ def wind_power_bound(mass: float, k: float, wind: np.ndarray) -> float:
     return 2.0 / (3.0 * math.sqrt(3.0)) * mass * k * math.sqrt(wind.dot(wind)) ** 3  # |wind|, as np.linalg.norm sums it
 
 
-def max_acceleration(speed: float, gravity: float, k: float, wind: np.ndarray) -> float:
+@kernel
+def max_acceleration(speed, gravity, k, wind):
     """A bound on a ball's acceleration while its speed stays below ``speed``."""
-    return abs(gravity) + k * (speed + float(np.linalg.norm(wind))) ** 2
+    w = math.sqrt(wind[0] * wind[0] + wind[1] * wind[1] + wind[2] * wind[2])
+    return abs(gravity) + k * (speed + w) ** 2
 
 
 @kernel

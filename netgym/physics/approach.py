@@ -1,5 +1,6 @@
-"""The ball's approach to the sleeping scene in closed form, in numba: the pieces of flight of the
-fast path (see :meth:`~netgym.physics.throws.Throw._fly_clear`) that nothing can decide.
+"""The ball's approach to the sleeping scene, in numba: the pieces of flight of the fast path
+(see :meth:`~netgym.physics.throws.Throw._fly_clear`) that nothing can decide, in closed form
+(:func:`approach`) or through air (:func:`approach_through_air`).
 
 A piece flies the ball, held clear of everything by its clearance, for the longest time it
 cannot travel that far, to the full simulation's step grid. :func:`approach` flies piece after
@@ -15,6 +16,7 @@ import math
 
 import numpy as np
 
+from netgym.physics import air
 from netgym.physics.contacts import clearance
 from netgym.physics.flight import ground_time, sliding
 from netgym.physics.jit import kernel
@@ -86,5 +88,60 @@ def approach(x, v, entered, model, ground, watch, box, time):
         for c in range(3):
             p[c] = end[c]
         u[2] += model.gravity * tau
+        update_entered(x, before, n_net, entered, opening)
+        t = t + tau
+
+
+@kernel
+def air_safe_time(speed, gap, gravity, k, wind, piece):
+    """A time within which a ball at ``speed`` through air (drag constant ``k``, ``wind``)
+    cannot travel ``gap``, at most ``piece``: its acceleration bounded over ``piece`` with the
+    speed it could gain meanwhile (:func:`~netgym.physics.air.max_acceleration`)."""
+    g0 = air.max_acceleration(speed, gravity, k, wind)
+    g = air.max_acceleration(speed + g0 * piece, gravity, k, wind)
+    return min(travel_time(speed, g, gap), piece)
+
+
+@kernel
+def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
+    """:func:`approach` through air: fly the ball of ``watch.row`` from ``time`` piece after
+    piece (:func:`~netgym.physics.air.fly`, bounces and sliding included) while each certainly
+    ends undecided; returns the time reached (``x``, ``v`` and ``entered`` moved on in place).
+
+    A piece starts only while the ball is not lying outside ``box`` held by friction (then it
+    flies away) and is farther than ``watch.clearance`` from the net, the poles and the other
+    balls; it lasts :func:`air_safe_time` (at most ``piece``), ends on the step grid from
+    ``watch.launched``, and is flown only if it stops short of the capture rule's depth and
+    the deadline is more than half a step after it. These are the pieces the throw would fly
+    itself, with the same arithmetic."""
+    row, n_net, radius, opening = watch.row, model.n_net, model.ball_radius, model.opening
+    k, wind, gravity = model.ball_drag, model.wind, model.gravity
+    before = np.empty((x.shape[0] - n_net, 3))
+    end_p, end_v = np.empty(3), np.empty(3)
+    t = time
+    while True:
+        p, u = x[row], v[row]
+        outside = False
+        for c in range(3):
+            outside = outside or not box[c] <= p[c] <= box[c + 3]
+        if outside and air.held_by_friction(u, gravity, k, wind, radius, ground.friction, p):
+            return t
+        gap = clearance(x, n_net, row, radius, model.segments, model.poles)
+        if gap <= watch.clearance:
+            return t
+        bound = air_safe_time(speed(u), gap, gravity, k, wind, piece)
+        tau = on_step_grid(t, min(bound, watch.deadline - t), watch.launched, watch.dt)
+        if tau <= 0.0 or watch.deadline - (t + tau) < 0.5 * watch.dt:
+            return t
+        for c in range(3):
+            end_p[c], end_v[c] = p[c], u[c]
+        air.fly(end_p, end_v, tau, k, wind, ground, air.MAX_FLIGHT_STEP)
+        if opening_depth(opening, end_p) >= watch.rule_depth:
+            return t
+        for b in range(before.shape[0]):
+            for c in range(3):
+                before[b, c] = x[n_net + b, c]
+        for c in range(3):
+            p[c], u[c] = end_p[c], end_v[c]
         update_entered(x, before, n_net, entered, opening)
         t = t + tau

@@ -313,8 +313,10 @@ class Throw:
                     return reason
         box, km = np.concatenate((lo, hi)), self.sim.kernel_model
         while True:
-            if parabola and self.film is None:  # the pieces that certainly end undecided, in one kernel call
-                s.time = approach.approach(s.x, s.v, s.entered, km, self.ground, course.watch, box, s.time)
+            if self.film is None:  # the pieces that certainly end undecided, in one kernel call
+                s.time = (approach.approach(s.x, s.v, s.entered, km, self.ground, course.watch, box, s.time) if parabola
+                          else approach.approach_through_air(s.x, s.v, s.entered, km, self.ground, course.watch, box,
+                                                             s.time, TUNING.air_piece))
             if self._never_enters(lo, hi, course.deadline - s.time):  # it left the box, for good
                 return Reason.FLIES_AWAY
             if parabola and flight.lies_still(s.x[row], s.v[row], self.ground):
@@ -436,10 +438,7 @@ class Throw:
         speed = approach.speed(v)
         if m.ball_drag == 0.0:
             return approach.travel_time(speed, abs(m.gravity), gap)
-        # bound the acceleration over at most air_piece, with the speed it could gain
-        g0 = air.max_acceleration(speed, m.gravity, m.ball_drag, m.wind)
-        g = air.max_acceleration(speed + g0 * TUNING.air_piece, m.gravity, m.ball_drag, m.wind)
-        return min(approach.travel_time(speed, g, gap), TUNING.air_piece)
+        return approach.air_safe_time(speed, gap, m.gravity, m.ball_drag, m.wind, TUNING.air_piece)
 
     # ------------------------------------------------------------------ filming
     def _film_flight(self, x: np.ndarray, v: np.ndarray, t: float, end: float) -> Plan:

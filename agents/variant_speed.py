@@ -1,0 +1,156 @@
+"""Every registered id's speed as a user pays it: whole episodes, resets included, under the
+ballistic oracle and random actions, and PPO training's environment steps per second.
+
+One process, one numba thread. The ids run interleaved, round after round, each round on
+episode seeds of its own, so that a slow spell of a shared machine falls on all of them alike;
+each id is compared with NetCatch-v0 under the same policy, as a ratio of throws per second
+measured in the same run. Only ``reset`` and ``step`` are timed (not the policy choosing its
+action), each once per call, so the tails (p99, max) are those a training loop meets.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import gymnasium as gym
+import numba
+import numpy as np
+from tqdm import tqdm
+
+import netgym
+from agents.oracle import BallisticOracle
+
+BASE_ID = "NetCatch-v0"
+POLICIES = ("oracle", "random")
+VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCatchPixels-v0")
+"""The ids with a vector observation (the pixel id renders every step: a different workload)."""
+
+
+@dataclass(frozen=True)
+class SpeedRow:
+    """One id under one policy: ``throws`` steps of ``episodes`` episodes, their rate with the
+    resets counted, p50/p99/max of a step and of a reset (ms), the capture rate, and the ratio
+    of its throws per second to NetCatch-v0's under the same policy."""
+
+    env_id: str
+    policy: str
+    episodes: int
+    throws: int
+    throws_per_s: float
+    step_ms: tuple[float, float, float]
+    reset_ms: tuple[float, float, float]
+    capture_rate: float
+    ratio: float
+
+
+def _chooser(policy: str, env: gym.Env, seed: int) -> Callable[[np.ndarray], np.ndarray]:
+    """The action for an observation: the ballistic oracle of the env's scene, or random actions."""
+    if policy == "oracle":
+        oracle = BallisticOracle(env.unwrapped.scene)
+        return lambda obs: oracle.predict(obs)[0]
+    rng = np.random.default_rng(seed)
+    return lambda obs: rng.uniform(-1.0, 1.0, 3).astype(np.float32)
+
+
+class _Timing:
+    """The timed calls of one (id, policy) pair over every round."""
+
+    def __init__(self, env_id: str, policy: str) -> None:
+        self.env_id, self.policy = env_id, policy
+        self.env = gym.make(env_id, disable_env_checker=True)
+        self.steps: list[float] = []
+        self.resets: list[float] = []
+        self.caught = 0
+        self.episodes = 0
+        self.run_episodes(1, seed=10**6, timed=False)   # compiles, builds the net family; not timed
+
+    def run_episodes(self, episodes: int, seed: int, timed: bool = True) -> None:
+        """Run ``episodes`` episodes seeded ``seed, seed + 1, ...``, timing each call."""
+        choose = _chooser(self.policy, self.env, seed)
+        for episode in range(episodes):
+            start = time.perf_counter()
+            obs, _ = self.env.reset(seed=seed + episode)
+            reset = time.perf_counter() - start
+            done, steps, caught = False, [], 0
+            while not done:
+                action = choose(obs)
+                start = time.perf_counter()
+                obs, _, terminated, truncated, info = self.env.step(action)
+                steps.append(time.perf_counter() - start)
+                caught += int(info["captured"])
+                done = terminated or truncated
+            if timed:
+                self.resets.append(reset)
+                self.steps.extend(steps)
+                self.caught += caught
+                self.episodes += 1
+
+    def row(self, base_rate: float | None) -> SpeedRow:
+        """The figures of every timed call (``base_rate``: NetCatch-v0's throws/s, None for itself)."""
+        rate = len(self.steps) / (sum(self.steps) + sum(self.resets))
+        return SpeedRow(self.env_id, self.policy, self.episodes, len(self.steps), rate, _tails(self.steps),
+                        _tails(self.resets), self.caught / len(self.steps), rate / (base_rate or rate))
+
+
+def _tails(seconds: list[float]) -> tuple[float, float, float]:
+    ms = 1e3 * np.asarray(seconds)
+    return float(np.median(ms)), float(np.percentile(ms, 99)), float(ms.max())
+
+
+def measure(episodes: int, rounds: int = 3, ids: tuple[str, ...] = VECTOR_IDS, seed: int = 0,
+            progress: bool = True) -> list[SpeedRow]:
+    """Every id of ``ids`` (NetCatch-v0 first) under each policy: ``episodes`` episodes a round,
+    ``rounds`` rounds interleaved, round ``r`` on seeds ``seed + 1000 r + ...``."""
+    numba.set_num_threads(1)
+    ids = (BASE_ID, *[i for i in ids if i != BASE_ID])
+    timings = [_Timing(env_id, policy) for env_id in ids for policy in POLICIES]
+    bar = tqdm(total=rounds * len(timings), desc="episodes of every id", unit="batch", disable=not progress)
+    for r in range(rounds):
+        for timing in timings:
+            timing.run_episodes(episodes, seed + 1000 * r)
+            bar.update()
+    bar.close()
+    base = {t.policy: t.row(None).throws_per_s for t in timings if t.env_id == BASE_ID}
+    return [t.row(None if t.env_id == BASE_ID else base[t.policy]) for t in timings]
+
+
+def training_steps_per_s(env_ids: tuple[str, ...] = (BASE_ID, "NetCatchWindy-v0"), steps: int = 4096,
+                         warm_up: int = 512, n_envs: int = 8, rounds: int = 1) -> dict[str, list[float]]:
+    """PPO training's environment steps per second on each id, as ``agents.training.train`` runs
+    it (SB3, ``n_envs`` SubprocVecEnv workers, one torch thread): ``steps`` timed after
+    ``warm_up``, from scratch, the ids interleaved over ``rounds``."""
+    from stable_baselines3 import PPO
+
+    from agents.hyperparams import POLICY, PPO_PARAMS
+    from agents.training import TRAINER_THREADS, make_training_env, torch_threads
+
+    rates: dict[str, list[float]] = {env_id: [] for env_id in env_ids}
+    for _ in range(rounds):
+        for env_id in env_ids:
+            env = make_training_env(n_envs, seed=0, env_id=env_id)
+            model = PPO(POLICY, env, device="cpu", seed=0, **PPO_PARAMS)
+            with torch_threads(TRAINER_THREADS):
+                model.learn(warm_up)
+                start, before = time.perf_counter(), model.num_timesteps
+                model.learn(steps, reset_num_timesteps=False)
+                rates[env_id].append((model.num_timesteps - before) / (time.perf_counter() - start))
+            env.close()
+    return rates
+
+
+def to_markdown(rows: list[SpeedRow], training: dict[str, list[float]] | None = None) -> str:
+    """The speed table of every id, and the training rates under it."""
+    lines = ["| id | policy | throws | caught | throws/s | vs NetCatch-v0 | step p50 / p99 / max (ms) | "
+             "reset p50 / p99 / max (ms) |", "|---|---|---:|---:|---:|---:|---|---|"]
+    for r in rows:
+        lines.append(f"| {r.env_id} | {r.policy} | {r.throws} | {100 * r.capture_rate:.1f}% | {r.throws_per_s:.1f} | "
+                     f"{r.ratio:.2f}x | {r.step_ms[0]:.1f} / {r.step_ms[1]:.1f} / {r.step_ms[2]:.1f} | "
+                     f"{r.reset_ms[0]:.1f} / {r.reset_ms[1]:.1f} / {r.reset_ms[2]:.1f} |")
+    if training:
+        base = float(np.median(training[BASE_ID]))
+        lines += ["", "| PPO training (SB3, 8 SubprocVecEnv workers) | env steps/s | vs NetCatch-v0 |", "|---|---:|---:|"]
+        lines += [f"| {env_id} | {np.median(rates):.0f} | {np.median(rates) / base:.2f}x |"
+                  for env_id, rates in training.items()]
+    return "\n".join(lines)

@@ -1,0 +1,41 @@
+"""Every registered id's speed as a user pays it (agents/variant_speed.py): whole episodes with
+resets under the ballistic oracle and random actions, interleaved over rounds, as ratios to
+NetCatch-v0 in the same run; and PPO training's env steps/s on NetCatch-v0 and NetCatchWindy-v0.
+
+Usage::
+
+    python scripts/bench_variants.py --episodes 40 --rounds 3 --results docs/results/variant_speed.json
+    python scripts/bench_variants.py --quick            # a few episodes, no training: a smoke test
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+from pathlib import Path
+
+from agents.variant_speed import measure, to_markdown, training_steps_per_s
+from netgym.bench.results import write_results
+
+
+def main() -> None:
+    """Parse arguments, measure, print the table, write the result file."""
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--episodes", type=int, default=40, help="episodes of each id and policy a round")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--training-steps", type=int, default=4096, help="timed PPO env steps per id (0: none)")
+    parser.add_argument("--quick", action="store_true", help="2 episodes, 1 round, no training")
+    parser.add_argument("--results", type=Path, help="also write the figures to this result file (JSON)")
+    args = parser.parse_args()
+    episodes, rounds = (2, 1) if args.quick else (args.episodes, args.rounds)
+    rows = measure(episodes, rounds)
+    training = None if args.quick or args.training_steps == 0 else training_steps_per_s(steps=args.training_steps)
+    print(to_markdown(rows, training))
+    if args.results is not None:
+        figures = {"episodes_per_round": episodes, "rounds": rounds,
+                   "rows": [dataclasses.asdict(row) for row in rows], "training": training}
+        print(f"wrote {write_results(args.results, figures)}")
+
+
+if __name__ == "__main__":
+    main()
