@@ -66,6 +66,17 @@ def observation_space(env_id: str) -> spaces.Space:
     return env.observation_space
 
 
+def vector_counterpart(env_id: str, **env_kwargs: Any) -> tuple[str, dict[str, Any]]:
+    """The id and arguments of the env with vector observations that runs the same episodes as
+    ``env_id`` with ``env_kwargs``: itself, or for pixels NetCatch-v0 with the pixel id's
+    arguments less the image size (the oracles read vector observations)."""
+    if len(observation_space(env_id).shape) == 1:
+        return env_id, env_kwargs
+    env_kwargs = {**gym.spec(env_id).kwargs, **env_kwargs}
+    env_kwargs.pop("size", None)
+    return DEFAULT_ENV, env_kwargs
+
+
 def frames_fitting(model_space: spaces.Space, env_space: spaces.Space) -> int | None:
     """How many of the env's observations make one of the model's (1 for the same shape, or an
     image SB3 turned channel-first; k for a vector k times as long), or None if they do not fit."""

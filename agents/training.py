@@ -61,14 +61,16 @@ Point = tuple[int, float, float]
 class CaptureCurve(BaseCallback):
     """Evaluate the deterministic policy on the same seeded episodes at the start, every
     ``eval_every`` environment steps and at the end; record (steps, capture rate, wall seconds
-    of training, evaluations excluded), save the best model, stop when the wall-clock budget
-    is spent."""
+    of training, evaluations excluded), save the best model (unless ``best_path`` is None), stop
+    when the wall-clock budget is spent. The episodes are ``env_id``'s with ``env_kwargs``
+    (default: ppo.yml's)."""
 
-    def __init__(self, eval_every: int, episodes: int, budget_s: float, best_path: Path, seed: int = EVAL_SEED,
-                 env_id: str = "NetCatch-v0", frame_stack: int = 1) -> None:
+    def __init__(self, eval_every: int, episodes: int, budget_s: float, best_path: Path | None, seed: int = EVAL_SEED,
+                 env_id: str = "NetCatch-v0", frame_stack: int = 1, env_kwargs: dict | None = None) -> None:
         super().__init__()
         self.eval_every, self.episodes, self.budget_s, self.env_id = eval_every, episodes, budget_s, env_id
         self.frame_stack = frame_stack
+        self.env_kwargs = ENV_KWARGS if env_kwargs is None else env_kwargs
         self.best_path, self.seed = best_path, seed
         self.points: list[Point] = []
         self._best = -1.0
@@ -79,10 +81,10 @@ class CaptureCurve(BaseCallback):
     def _evaluate(self) -> None:
         self._spent += time.perf_counter() - self._resumed
         rate = evaluate(acting_policy(self.model, self.frame_stack), self.episodes, seed=self.seed,
-                        env_id=self.env_id, **ENV_KWARGS).rate  # captures
+                        env_id=self.env_id, **self.env_kwargs).rate  # captures
         self.points.append((self.num_timesteps, rate, self._spent))
         self.logger.record("eval/capture_rate", rate)
-        if rate > self._best:
+        if rate > self._best and self.best_path is not None:
             self._best = rate
             self.model.save(self.best_path)
         self._next = self.num_timesteps + self.eval_every

@@ -1,6 +1,8 @@
-"""The PPO settings of NetCatch-v0, read from their one source, ``ppo.yml`` in this folder
-(rl_zoo3's format: ``python -m rl_zoo3.train --conf-file agents/hyperparams/ppo.yml`` reads it
-as it is).
+"""Hyperparameters in rl_zoo3's format, one file an algorithm in this folder (``ppo.yml``,
+``sac.yml``, ...; ``python -m rl_zoo3.train --conf-file agents/hyperparams/ppo.yml`` reads them as
+they are): :func:`load` reads an env id's settings, :func:`algorithm_kwargs` and
+:func:`action_noise` turn them into keyword arguments of the algorithm's class. The PPO settings
+of NetCatch-v0:
 
 - :data:`PPO_PARAMS`: keyword arguments of Stable-Baselines3's ``PPO`` (``agents/training.py``);
 - :data:`POLICY`, :data:`ENV_KWARGS`: the policy class name and the training environment's
@@ -15,13 +17,16 @@ import ast
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
 from netgym.errors import InvalidArgumentError
 
-PPO_YML = Path(__file__).resolve().parent / "ppo.yml"
+HERE = Path(__file__).resolve().parent
+PPO_YML = HERE / "ppo.yml"
 ENV_ID = "NetCatch-v0"
 ZOO_ONLY = ("n_envs", "n_timesteps", "policy", "env_kwargs")  # rl_zoo3's run settings, not PPO arguments
+NOISE = ("noise_type", "noise_std")  # rl_zoo3's action noise of off-policy algorithms, see action_noise
 # SB3 name -> RLlib PPOConfig.training name. Not mapped: clip_range, batch sizes and net_arch
 # (train_rllib.py has always run with RLlib's own clip_param, its --batch option and RLlib's
 # default model; taking them from here would change its training).
@@ -40,6 +45,16 @@ def parse_policy_kwargs(text: str) -> dict[str, Any]:
     return {k.arg: ast.literal_eval(k.value) for k in node.keywords}
 
 
+def yml(algorithm: str) -> Path:
+    """The hyperparameter file of ``algorithm`` (its file name without ``.yml``, e.g. ``"sac"``)."""
+    return HERE / f"{algorithm}.yml"
+
+
+def env_ids(path: Path) -> list[str]:
+    """The env ids the yml has settings for."""
+    return list(yaml.safe_load(path.read_text()))
+
+
 def load(path: Path = PPO_YML, env_id: str = ENV_ID) -> dict[str, Any]:
     """The yml's settings for ``env_id``, with ``policy_kwargs`` parsed into a dict."""
     settings = dict(yaml.safe_load(path.read_text())[env_id])
@@ -48,8 +63,28 @@ def load(path: Path = PPO_YML, env_id: str = ENV_ID) -> dict[str, Any]:
     return settings
 
 
+def algorithm_kwargs(settings: dict[str, Any]) -> dict[str, Any]:
+    """The settings that are keyword arguments of the algorithm's class (all but rl_zoo3's run
+    settings and its action noise)."""
+    return {key: value for key, value in settings.items() if key not in ZOO_ONLY + NOISE}
+
+
+def action_noise(settings: dict[str, Any], n_actions: int) -> Any:
+    """Stable-Baselines3's action noise that rl_zoo3 makes of ``noise_type`` (``normal`` or
+    ``ornstein-uhlenbeck``) and ``noise_std``, or None when the settings have none."""
+    from stable_baselines3.common.noise import NormalActionNoise, OrnsteinUhlenbeckActionNoise
+
+    kinds = {"normal": NormalActionNoise, "ornstein-uhlenbeck": OrnsteinUhlenbeckActionNoise}
+    kind = settings.get("noise_type")
+    if kind is None:
+        return None
+    if kind not in kinds:
+        raise InvalidArgumentError(f"noise_type = {kind!r} is not one of {list(kinds)}")
+    return kinds[kind](mean=np.zeros(n_actions), sigma=settings["noise_std"] * np.ones(n_actions))
+
+
 SETTINGS = load()
-PPO_PARAMS: dict[str, Any] = {key: value for key, value in SETTINGS.items() if key not in ZOO_ONLY}
+PPO_PARAMS: dict[str, Any] = algorithm_kwargs(SETTINGS)
 POLICY: str = SETTINGS["policy"]
 ENV_KWARGS: dict[str, Any] = SETTINGS["env_kwargs"]
 

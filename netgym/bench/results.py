@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import datetime
 import json
+import os
 import platform
 import sys
 from pathlib import Path
@@ -24,7 +25,9 @@ RESULTS = Path(__file__).resolve().parents[2] / "docs" / "results"
 
 def write_results(path: str | Path, figures: Any, command: list[str] | None = None) -> Path:
     """Write ``figures`` (JSON-serialisable) to ``path`` with their provenance: the command
-    line (default: this process's), the date and time, the machine and Python; returns the path."""
+    line (default: this process's), the date and time, the machine and Python; returns the path.
+    Atomic: the file is written beside ``path`` and renamed onto it, so that a reader never
+    meets, and a process killed while writing never leaves, a half-written ``path``."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     record = {
@@ -33,7 +36,9 @@ def write_results(path: str | Path, figures: Any, command: list[str] | None = No
         "machine": f"{platform.machine()}, {platform.system()}, Python {platform.python_version()}",
         "figures": figures,
     }
-    path.write_text(json.dumps(record, indent=1) + "\n")
+    written = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    written.write_text(json.dumps(record, indent=1) + "\n")
+    os.replace(written, path)
     return path
 
 

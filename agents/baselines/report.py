@@ -1,0 +1,125 @@
+"""The baselines' table and figures, from the result files under the output folder alone:
+per algorithm and id the interquartile mean of the final capture rate over seeds with its 95%
+stratified bootstrap interval, raw and normalised (random 0, informed oracle 1); per algorithm the
+normalised IQM over all its ids; learning curves (IQM and interval against environment steps)
+and a performance profile."""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from agents.baselines.grid import REFERENCES
+from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
+from netgym.bench.results import read_results
+
+Cells = dict[tuple[str, str], list[dict[str, Any]]]
+
+
+def load_cells(out: Path) -> Cells:
+    """Every complete result under ``out``, grouped by (algorithm, env id), seeds in order."""
+    cells: Cells = defaultdict(list)
+    for path in sorted(out.glob("*/*/seed_*.json")):
+        record = read_results(path)["figures"]
+        cells[record["algorithm"], record["env_id"]].append(record)
+    return {key: sorted(records, key=lambda r: r["seed"]) for key, records in cells.items()}
+
+
+def _rates(records: list[dict[str, Any]]) -> np.ndarray:
+    return np.array([record["final"]["rate"] for record in records])
+
+
+def normalised(cells: Cells) -> dict[tuple[str, str], np.ndarray]:
+    """The learners' final capture rates of each cell, normalised by the id's references."""
+    refs = {(algo, env_id): _rates(records)[0] for (algo, env_id), records in cells.items() if algo in REFERENCES}
+    return {(algo, env_id): normalise(_rates(records), refs["random", env_id], refs["oracle", env_id])
+            for (algo, env_id), records in cells.items()
+            if algo not in REFERENCES and ("random", env_id) in refs and ("oracle", env_id) in refs}
+
+
+def _interval(scores: np.ndarray, scale: float = 100.0, unit: str = "%") -> str:
+    low, high = bootstrap_ci(scores)
+    return f"{scale * iqm(scores):.1f}{unit} [{scale * low:.1f}, {scale * high:.1f}]"
+
+
+def table(cells: Cells) -> str:
+    """The markdown table: one row per (algorithm, id) with its budget, seeds, IQM capture rate
+    and normalised IQM with 95% intervals, and the median wall-clock of a run; then the
+    references, then each algorithm's normalised IQM over its ids (stratified over ids)."""
+    scaled = normalised(cells)
+    lines = ["| algorithm | env id | budget (steps) | seeds | capture rate, IQM [95% CI] | normalised IQM [95% CI] "
+             "| minutes a run (median) |", "|---|---|---:|---:|---:|---:|---:|"]
+    for (algo, env_id), records in sorted(cells.items(), key=lambda item: (item[0][0] in REFERENCES, item[0])):
+        norm = _interval(scaled[algo, env_id], 1.0, "") if (algo, env_id) in scaled else "-"
+        wall = np.median([record["wall_s"] for record in records]) / 60
+        lines.append(f"| {algo} | {env_id} | {records[0]['budget']:,} | {len(records)} | "
+                     f"{_interval(_rates(records))} | {norm} | {wall:.1f} |")
+    by_algo: dict[str, list[np.ndarray]] = defaultdict(list)
+    for (algo, _), scores in sorted(scaled.items()):
+        by_algo[algo].append(scores)
+    lines += ["", "| algorithm | ids | normalised IQM over ids [95% stratified CI] |", "|---|---:|---:|"]
+    for algo, columns in by_algo.items():
+        if len({len(c) for c in columns}) == 1:  # stratified resampling needs a seed count common to the ids
+            lines.append(f"| {algo} | {len(columns)} | {_interval(np.stack(columns, axis=1), 1.0, '')} |")
+    return "\n".join(lines)
+
+
+def _curve(records: list[dict[str, Any]]) -> tuple[np.ndarray, np.ndarray]:
+    """The seeds' curves on the first seed's evaluation steps: steps, rates (seeds x steps)."""
+    steps = np.array([point[0] for point in records[0]["curve"]["points"]])
+    rates = np.array([np.interp(steps, *np.array(r["curve"]["points"])[:, :2].T) for r in records])
+    return steps, rates
+
+
+def plot(cells: Cells, path: Path) -> None:
+    """Learning curves (IQM over seeds and its 95% interval against environment steps), one panel
+    an id, with the references as lines; the performance profile of the normalised scores."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ids = sorted({env_id for algo, env_id in cells if algo not in REFERENCES})
+    fig, axes = plt.subplots(1, len(ids) + 1, figsize=(4.0 * (len(ids) + 1), 3.6), squeeze=False)
+    for ax, env_id in zip(axes[0], ids):
+        for (algo, cell_id), records in sorted(cells.items()):
+            if cell_id != env_id:
+                continue
+            if algo in REFERENCES:
+                ax.axhline(100 * _rates(records)[0], linestyle=":", color="gray" if algo == "random" else "green",
+                           label=algo)
+                continue
+            steps, rates = _curve(records)
+            bands = np.array([bootstrap_ci(rates[:, k], reps=500) for k in range(len(steps))])
+            ax.plot(steps, [100 * iqm(rates[:, k]) for k in range(len(steps))], label=f"{algo} ({len(records)} seeds)")
+            ax.fill_between(steps, 100 * bands[:, 0], 100 * bands[:, 1], alpha=0.2)
+        ax.set(title=env_id, xlabel="environment steps", ylim=(0, 105))
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="lower right")
+    axes[0][0].set_ylabel("capture rate (%), IQM over seeds")
+    profile = axes[0][-1]
+    thresholds = np.linspace(0.0, 1.05, 106)
+    scaled = normalised(cells)
+    for algo in sorted({algo for algo, _ in scaled}):
+        scores = np.concatenate([s for (a, _), s in sorted(scaled.items()) if a == algo])
+        profile.plot(thresholds, performance_profile(scores, thresholds), label=algo)
+    profile.set(title="performance profile", xlabel="normalised score τ", ylabel="fraction of runs with score > τ",
+                ylim=(0, 1.05))
+    profile.grid(alpha=0.3)
+    profile.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def write_report(out: Path) -> Path:
+    """Write ``out/report.md`` (the table) and ``out/curves.png`` from the result files; returns
+    the report's path."""
+    cells = load_cells(out)
+    plot(cells, out / "curves.png")
+    report = out / "report.md"
+    report.write_text(f"# Baselines\n\n{table(cells)}\n\n![learning curves and performance profile](curves.png)\n")
+    return report

@@ -1,0 +1,101 @@
+"""Run the baseline runs whose result files are missing: in local worker processes (the default)
+or as Ray tasks on a cluster. Each result is written the moment its run ends, atomically, so a
+runner killed at any point and started again runs only what is missing and loses nothing."""
+
+from __future__ import annotations
+
+import ctypes
+import functools
+import json
+import multiprocessing
+import signal
+import time
+from collections.abc import Callable, Iterator
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+from typing import Any
+
+from agents.baselines.grid import Run
+from agents.baselines.runs import execute
+from agents.warm_up import compile_kernels
+from netgym.bench.results import read_results, write_results
+from netgym.errors import InvalidArgumentError
+
+PR_SET_PDEATHSIG = 1
+
+
+def done(run: Run, out: Path) -> bool:
+    """Whether ``run``'s result file under ``out`` is there and complete."""
+    try:
+        return "final" in read_results(run.path(out))["figures"]
+    except (FileNotFoundError, InvalidArgumentError, json.JSONDecodeError):
+        return False
+
+
+def missing(runs: list[Run], out: Path) -> list[Run]:
+    """The runs of ``runs`` without a complete result file under ``out``."""
+    return [run for run in runs if not done(run, out)]
+
+
+def _die_with_parent() -> None:
+    """Worker initializer: end with the runner (SIGKILL when it dies, whatever kills it), so
+    that no orphaned worker writes a result the next runner also runs."""
+    ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+
+
+def _compile(ids: list[str]) -> None:
+    """Compile (or load from numba's cache) the kernels of every id in ``ids``."""
+    for env_id in ids:
+        compile_kernels(env_id)
+
+
+def _local(runs: list[Run], workers: int) -> Iterator[tuple[Run, dict[str, Any]]]:
+    """Each run's record as it ends, from ``workers`` processes started fresh (spawn) after the
+    kernels of the runs' ids are compiled once here."""
+    _compile(list(dict.fromkeys(run.env_id for run in runs)))
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=_die_with_parent) as pool:
+        futures = {pool.submit(execute, run): run for run in runs}
+        for future in as_completed(futures):
+            yield futures[future], future.result()
+
+
+def _ray(runs: list[Run], address: str) -> Iterator[tuple[Run, dict[str, Any]]]:
+    """Each run's record as it ends, from Ray tasks (one CPU each) on the cluster at
+    ``address``; the kernels are compiled first on every node, one task each."""
+    import ray
+    from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
+
+    ray.init(address=address)
+    warm = ray.remote(num_cpus=1)(_compile)
+    ids = list(dict.fromkeys(run.env_id for run in runs))
+    nodes = [node["NodeID"] for node in ray.nodes() if node["Alive"] and node["Resources"].get("CPU", 0) >= 1]
+    ray.get([warm.options(scheduling_strategy=NodeAffinitySchedulingStrategy(node, soft=False)).remote(ids)
+             for node in nodes])
+    task = ray.remote(num_cpus=1)(execute)
+    pending = {task.remote(run): run for run in runs}
+    while pending:
+        ready, _ = ray.wait(list(pending), num_returns=1)
+        yield pending.pop(ready[0]), ray.get(ready[0])
+
+
+def run_missing(runs: list[Run], out: Path, workers: int = 2, address: str | None = None,
+                report: Callable[[str], None] = functools.partial(print, flush=True)) -> list[Run]:
+    """Run those of ``runs`` not done under ``out``, each result file written as its run ends
+    (``--out``'s layout: ``ALGORITHM/ENV_ID/seed_K.json``); ``report`` gets a line per run
+    with the progress and the estimated time left. Returns the runs it ran."""
+    todo = missing(runs, out)
+    report(f"{len(runs) - len(todo)} of {len(runs)} runs done under {out}; {len(todo)} to run "
+           + (f"on the Ray cluster at {address}" if address else f"in {workers} local processes"))
+    if not todo:
+        return []
+    total, spent, start = sum(run.cost for run in todo), 0, time.perf_counter()
+    records = _ray(todo, address) if address else _local(todo, workers)
+    for k, (run, record) in enumerate(records, start=1):
+        write_results(run.path(out), record, command=run.command(out))
+        spent += run.cost
+        elapsed = time.perf_counter() - start
+        report(f"[{k}/{len(todo)}] {run.name}: {100 * record['final']['rate']:.1f}% captured, "
+               f"{record['wall_s']:.0f} s; elapsed {elapsed / 60:.1f} min, "
+               f"left ~{elapsed / spent * (total - spent) / 60:.1f} min")
+    return todo

@@ -1,0 +1,90 @@
+"""One baseline run: train an algorithm on an env id for its budget of environment steps, with a
+learning curve, then evaluate the deterministic policy on the held-out episodes; or evaluate a
+reference policy. The result is a JSON-ready record (the runner writes it)."""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime
+import importlib
+import importlib.metadata
+import platform
+import subprocess
+import time
+from pathlib import Path
+from typing import Any
+
+from stable_baselines3.common.env_util import make_vec_env
+from stable_baselines3.common.vec_env import DummyVecEnv
+
+import netgym  # noqa: F401  (registers the ids make_vec_env makes)
+from agents.baselines.grid import ALGORITHMS, CURVE_POINTS, FINAL_SEED, Run
+from agents.evaluation import CaptureRate, evaluate
+from agents.hyperparams import action_noise, algorithm_kwargs, load, yml
+from agents.model_env import record_env, vector_counterpart
+from agents.oracle import InformedOracle
+from agents.random_agent import RandomAgent
+from agents.training import TRAINER_THREADS, CaptureCurve, torch_threads
+
+PACKAGES = ("netgym", "stable-baselines3", "sb3-contrib", "torch", "numpy", "gymnasium", "numba")
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def versions() -> dict[str, str | None]:
+    """The versions of Python, the packages a run depends on and the source tree's git commit."""
+    found: dict[str, str | None] = {"python": platform.python_version()}
+    for package in PACKAGES:
+        try:
+            found[package] = importlib.metadata.version(package)
+        except importlib.metadata.PackageNotFoundError:
+            found[package] = None
+    git = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True)
+    found["commit"] = git.stdout.strip() if git.returncode == 0 else None
+    return found
+
+
+def execute(run: Run) -> dict[str, Any]:
+    """Train and evaluate ``run`` on one torch thread; its record: the run's fields, versions,
+    machine, start time, wall seconds, steps trained, hyperparameters, learning curve
+    (``[steps, capture rate, training seconds]`` points) and the final evaluation."""
+    started, clock = datetime.datetime.now(datetime.timezone.utc), time.perf_counter()
+    with torch_threads(TRAINER_THREADS):
+        trained = _reference(run) if run.budget == 0 else _learner(run)
+    return {**dataclasses.asdict(run), "versions": versions(), "machine": f"{platform.machine()}, {platform.node()}",
+            "started": started.isoformat(timespec="seconds"), "wall_s": time.perf_counter() - clock, **trained}
+
+
+def _final(rate: CaptureRate, episodes: int) -> dict[str, Any]:
+    return {"episodes": episodes, "seed": FINAL_SEED, "deterministic": True, "rate": rate.rate,
+            **dataclasses.asdict(rate)}
+
+
+def _reference(run: Run) -> dict[str, Any]:
+    """A reference policy on the held-out episodes (of the vector counterpart, for pixels)."""
+    policies = {"random": RandomAgent(run.seed), "oracle": InformedOracle}
+    env_id, env_kwargs = vector_counterpart(run.env_id)
+    rate = evaluate(policies[run.algorithm], run.final_episodes, seed=FINAL_SEED, env_id=env_id, **env_kwargs)
+    return {"env_steps": 0, "hyperparams": {}, "curve": {"episodes": 0, "points": []},
+            "final": {**_final(rate, run.final_episodes), "evaluated_on": env_id}}
+
+
+def _learner(run: Run) -> dict[str, Any]:
+    """Train the algorithm with its yml's settings for the id, recording the curve; evaluate."""
+    settings = load(yml(run.algorithm), run.env_id)
+    module, name = ALGORITHMS[run.algorithm]
+    algorithm = getattr(importlib.import_module(module), name)
+    env_kwargs = settings.get("env_kwargs", {})
+    env = make_vec_env(run.env_id, n_envs=settings.get("n_envs", 1), seed=run.seed, vec_env_cls=DummyVecEnv,
+                       env_kwargs=env_kwargs)
+    noise = action_noise(settings, env.action_space.shape[0])
+    model = algorithm(settings["policy"], env, seed=run.seed, device="cpu", verbose=0,
+                      **({"action_noise": noise} if noise is not None else {}), **algorithm_kwargs(settings))
+    record_env(model, run.env_id)
+    curve = CaptureCurve(max(1, run.budget // CURVE_POINTS), run.curve_episodes, float("inf"), None,
+                         env_id=run.env_id, env_kwargs=env_kwargs)
+    model.learn(run.budget, callback=curve)
+    env.close()
+    rate = evaluate(model, run.final_episodes, seed=FINAL_SEED, env_id=run.env_id, **env_kwargs)
+    return {"env_steps": model.num_timesteps, "hyperparams": settings, "train_s": curve.points[-1][2],
+            "curve": {"episodes": run.curve_episodes, "seed": curve.seed, "points": curve.points},
+            "final": _final(rate, run.final_episodes)}
