@@ -10,6 +10,8 @@ action), each once per call, so the tails (p99, max) are those a training loop m
 
 from __future__ import annotations
 
+import cProfile
+import pstats
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -21,8 +23,8 @@ from tqdm import tqdm
 
 import netgym
 from agents.oracle import BallisticOracle
+from netgym.bench.speed_table import BASE_ID
 
-BASE_ID = "NetCatch-v0"
 POLICIES = ("oracle", "random")
 VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCatchPixels-v0")
 """The ids with a vector observation (the pixel id renders every step: a different workload)."""
@@ -116,6 +118,32 @@ def measure(episodes: int, rounds: int = 3, ids: tuple[str, ...] = VECTOR_IDS, s
     return [t.row(None if t.env_id == BASE_ID else base[t.policy]) for t in timings]
 
 
+PHASES = {  # phase: the functions (file suffix, name) whose cumulative time it is
+    "reset": [("envs/net_catch.py", "reset")],
+    "integration near the net": [("physics/integration.py", "integrate_watched"), ("physics/integration.py", "integrate")],
+    "the pause": [("physics/integration.py", "relax")],
+    "flight clear of everything": [("physics/throws.py", "_fly_clear")],
+    "decision checks": [("physics/throws.py", "_decide")],
+}
+
+
+def profile(env_id: str, policy: str, episodes: int, seed: int = 50_000) -> dict[str, float]:
+    """Where an id's episodes spend their time (cProfile over ``episodes`` episodes, the policy's
+    own time left out): each of :data:`PHASES` as a share of the env's time, and ``"other"``."""
+    timing = _Timing(env_id, policy)
+    profiler = cProfile.Profile()
+    profiler.enable()
+    timing.run_episodes(episodes, seed)
+    profiler.disable()
+    stats = pstats.Stats(profiler).stats  # (file, line, name) -> (calls, primitive, own, cumulative, callers)
+    env_time = sum(timing.steps) + sum(timing.resets)
+    shares = {phase: sum(ct for (path, _, name), (_, _, _, ct, _) in stats.items()
+                         if any(path.endswith(suffix) and name == fn for suffix, fn in functions)) / env_time
+              for phase, functions in PHASES.items()}
+    shares["other"] = max(0.0, 1.0 - sum(shares.values()))
+    return shares
+
+
 def training_steps_per_s(env_ids: tuple[str, ...] = (BASE_ID, "NetCatchWindy-v0"), steps: int = 4096,
                          warm_up: int = 512, n_envs: int = 8, rounds: int = 1) -> dict[str, list[float]]:
     """PPO training's environment steps per second on each id, as ``agents.training.train`` runs
@@ -138,19 +166,3 @@ def training_steps_per_s(env_ids: tuple[str, ...] = (BASE_ID, "NetCatchWindy-v0"
                 rates[env_id].append((model.num_timesteps - before) / (time.perf_counter() - start))
             env.close()
     return rates
-
-
-def to_markdown(rows: list[SpeedRow], training: dict[str, list[float]] | None = None) -> str:
-    """The speed table of every id, and the training rates under it."""
-    lines = ["| id | policy | throws | caught | throws/s | vs NetCatch-v0 | step p50 / p99 / max (ms) | "
-             "reset p50 / p99 / max (ms) |", "|---|---|---:|---:|---:|---:|---|---|"]
-    for r in rows:
-        lines.append(f"| {r.env_id} | {r.policy} | {r.throws} | {100 * r.capture_rate:.1f}% | {r.throws_per_s:.1f} | "
-                     f"{r.ratio:.2f}x | {r.step_ms[0]:.1f} / {r.step_ms[1]:.1f} / {r.step_ms[2]:.1f} | "
-                     f"{r.reset_ms[0]:.1f} / {r.reset_ms[1]:.1f} / {r.reset_ms[2]:.1f} |")
-    if training:
-        base = float(np.median(training[BASE_ID]))
-        lines += ["", "| PPO training (SB3, 8 SubprocVecEnv workers) | env steps/s | vs NetCatch-v0 |", "|---|---:|---:|"]
-        lines += [f"| {env_id} | {np.median(rates):.0f} | {np.median(rates) / base:.2f}x |"
-                  for env_id, rates in training.items()]
-    return "\n".join(lines)

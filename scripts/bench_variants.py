@@ -1,6 +1,7 @@
 """Every registered id's speed as a user pays it (agents/variant_speed.py): whole episodes with
 resets under the ballistic oracle and random actions, interleaved over rounds, as ratios to
-NetCatch-v0 in the same run; and PPO training's env steps/s on NetCatch-v0 and NetCatchWindy-v0.
+NetCatch-v0 in the same run; where each id's time goes (cProfile); and PPO training's env steps/s
+on NetCatch-v0 and NetCatchWindy-v0.
 
 Usage::
 
@@ -14,8 +15,9 @@ import argparse
 import dataclasses
 from pathlib import Path
 
-from agents.variant_speed import measure, to_markdown, training_steps_per_s
+from agents.variant_speed import POLICIES, VECTOR_IDS, measure, profile, training_steps_per_s
 from netgym.bench.results import write_results
+from netgym.bench.speed_table import to_markdown
 
 
 def main() -> None:
@@ -24,16 +26,19 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=40, help="episodes of each id and policy a round")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--training-steps", type=int, default=4096, help="timed PPO env steps per id (0: none)")
-    parser.add_argument("--quick", action="store_true", help="2 episodes, 1 round, no training")
+    parser.add_argument("--profile-episodes", type=int, default=10, help="episodes profiled per id and policy")
+    parser.add_argument("--quick", action="store_true", help="2 episodes, 1 round, 1 profiled, no training")
     parser.add_argument("--results", type=Path, help="also write the figures to this result file (JSON)")
     args = parser.parse_args()
     episodes, rounds = (2, 1) if args.quick else (args.episodes, args.rounds)
-    rows = measure(episodes, rounds)
+    rows = [dataclasses.asdict(row) for row in measure(episodes, rounds)]
+    profiled = 1 if args.quick else args.profile_episodes
+    shares = {env_id: {policy: profile(env_id, policy, profiled) for policy in POLICIES} for env_id in VECTOR_IDS}
     training = None if args.quick or args.training_steps == 0 else training_steps_per_s(steps=args.training_steps)
-    print(to_markdown(rows, training))
+    print(to_markdown(rows, training, shares))
     if args.results is not None:
-        figures = {"episodes_per_round": episodes, "rounds": rounds,
-                   "rows": [dataclasses.asdict(row) for row in rows], "training": training}
+        figures = {"episodes_per_round": episodes, "rounds": rounds, "rows": rows, "training": training,
+                   "profile": shares, "profile_episodes": profiled}
         print(f"wrote {write_results(args.results, figures)}")
 
 
