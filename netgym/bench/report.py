@@ -18,6 +18,7 @@ from netgym.bench import (
     pause_accuracy,
     roofline,
     sim_throughput,
+    speed_table,
 )
 from netgym.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.fast_path import CASES, compare, summarise
@@ -50,6 +51,7 @@ from netgym.bench.report_text import (
     PAUSE_TEXT,
     PILE_FRICTION_TEXT,
     ROOFLINE_TEXT,
+    VARIANT_SPEED_TEXT,
     STATIC_PAUSE_TEXT,
     STEP_LIMIT_TEXT,
     SUBSTEPS_TEXT,
@@ -269,6 +271,8 @@ def to_markdown(report: Report) -> str:
             "", CREEP_TEXT, "", report.creep]
     out += ["", "## 10. The spring pass against its roofline", "", ROOFLINE_TEXT, "", "<!-- quote:roofline -->",
             _roofline_table(), "<!-- /quote:roofline -->"]
+    out += ["", "## 11. Every id's speed", "", VARIANT_SPEED_TEXT, "", "<!-- quote:variant-speed -->",
+            speed_table.block(RESULTS / "variant_speed.json"), "<!-- /quote:variant-speed -->"]
     return "\n".join(out) + "\n"
 
 

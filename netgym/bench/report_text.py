@@ -376,3 +376,21 @@ ROOFLINE_TEXT = (
     "three parameters; the dense groups read neither indices nor a stiffness and damping a spring. The pass is "
     "timed as the integrators call it, from compiled code (a call from Python adds numba's dispatch, about "
     "1.5 us). The count of packed instructions says whether the compiler vectorised it.")
+
+VARIANT_SPEED_TEXT = (
+    "What each registered id with a vector observation costs a user (`python scripts/bench_variants.py`, "
+    "`agents/variant_speed.py`): whole episodes, `reset` included, under the ballistic oracle (blind to any "
+    "wind or noise) and under random actions; the ids run interleaved, round after round on fresh episode "
+    "seeds, and each is compared with NetCatch-v0 under the same policy in the same run. Only `reset` and "
+    "`step` are timed. The second table is PPO training as `agents/training.py` runs it, from scratch; the "
+    "third where the time goes, by cProfile over a few episodes of each (the profiler's own overhead falls on "
+    "the Python parts, `other` most). Reading it: the variants differ from NetCatch-v0 less in what a throw "
+    "costs than in which throws they produce. Air slows the balls, so more throws land on the net's walls "
+    "and rim; the blind oracle in wind and under launch noise hits the rim far more often than the "
+    "noiseless oracle, and a ball that hits it wakes the net, which is then integrated until the ball's "
+    "outcome is decided (the energy bound, or the rest test, needs the net to calm down first). That "
+    "integration, not the flight through air nor the wind's energy allowance (setting the allowance to "
+    "zero left the substeps of 30 windy oracle episodes within 1%), is where the windy and noisy episodes "
+    "spend their time. Resets are cheap everywhere: a new wind shares the net and its kernel arrays, and a "
+    "randomized net comes from its family (`netgym/physics/net_family.py`): settled from scratch at five "
+    "stiffnesses once per process and interpolated, its stability taken from the drawn springs' corners.")
