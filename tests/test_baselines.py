@@ -125,6 +125,19 @@ def test_a_run_is_done_only_with_a_complete_result_file(tmp_path: Path) -> None:
     assert done(run, tmp_path) and missing([run], tmp_path) == []
 
 
+def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, monkeypatch) -> None:
+    from agents.baselines import runner
+
+    failing, passing = grid(quick=True)[:2]
+    outcomes = [(failing, ValueError("boom")), (passing, {"final": {"rate": 1.0}, "wall_s": 1.0})]
+    monkeypatch.setattr(runner, "_local", lambda runs, workers: iter(outcomes))
+    lines: list[str] = []
+    with pytest.raises(RuntimeError, match=failing.name):
+        runner.run_missing([failing, passing], tmp_path, report=lines.append)
+    assert done(passing, tmp_path) and not done(failing, tmp_path)
+    assert any("FAILED" in line and "boom" in line for line in lines)
+
+
 def _children(pid: int) -> list[int]:
     """Process ids whose parent is ``pid``."""
     found = []
@@ -193,3 +206,19 @@ def test_quick_mode_runs_the_quick_grid_end_to_end(tmp_path: Path) -> None:
     report = (tmp_path / "report.md").read_text()
     assert all(f"| {run.algorithm} | {run.env_id} |" in report for run in runs)
     assert len(grid_module.QUICK_IDS) == len({run.env_id for run in runs})
+
+
+@pytest.mark.slow
+def test_runs_go_to_a_ray_cluster_as_tasks_with_address(tmp_path: Path) -> None:
+    """``--address``: the same runs as Ray tasks on a local two-node cluster (in a network
+    namespace of its own, as tests/test_rllib_cluster.py starts it), their results written here."""
+    from test_rllib_cluster import _needs_cluster
+
+    _needs_cluster()
+    command = [sys.executable, "scripts/local_cluster.py", "--", sys.executable, "scripts/baselines.py", "--quick",
+               "--out", str(tmp_path), "--algos", "ppo", "--ids", "NetCatch-v0", "--address", "127.0.0.1:6380"]
+    finished = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert finished.returncode == 0, finished.stdout[-3000:] + finished.stderr[-3000:]
+    runs = grid(["ppo"], ["NetCatch-v0"], quick=True)
+    assert f"{len(runs)} to run on the Ray cluster" in finished.stdout
+    assert all(done(run, tmp_path) for run in runs)

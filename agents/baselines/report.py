@@ -94,8 +94,8 @@ def plot(cells: Cells, path: Path) -> None:
                 continue
             steps, rates = _curve(records)
             bands = np.array([bootstrap_ci(rates[:, k], reps=500) for k in range(len(steps))])
-            ax.plot(steps, [100 * iqm(rates[:, k]) for k in range(len(steps))], label=f"{algo} ({len(records)} seeds)")
-            ax.fill_between(steps, 100 * bands[:, 0], 100 * bands[:, 1], alpha=0.2)
+            line, = ax.plot(steps, 100 * iqm(rates, axis=0), label=f"{algo} (n={len(records)})")
+            ax.fill_between(steps, 100 * bands[:, 0], 100 * bands[:, 1], color=line.get_color(), alpha=0.2)
         ax.set(title=env_id, xlabel="environment steps", ylim=(0, 105))
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="lower right")

@@ -49,19 +49,23 @@ def _compile(ids: list[str]) -> None:
         compile_kernels(env_id)
 
 
-def _local(runs: list[Run], workers: int) -> Iterator[tuple[Run, dict[str, Any]]]:
-    """Each run's record as it ends, from ``workers`` processes started fresh (spawn) after the
+Outcome = tuple[Run, "dict[str, Any] | Exception"]
+"""A run and its record, or the exception that ended it."""
+
+
+def _local(runs: list[Run], workers: int) -> Iterator[Outcome]:
+    """Each run's outcome as it ends, from ``workers`` processes started fresh (spawn) after the
     kernels of the runs' ids are compiled once here."""
     _compile(list(dict.fromkeys(run.env_id for run in runs)))
     context = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(workers, mp_context=context, initializer=_die_with_parent) as pool:
         futures = {pool.submit(execute, run): run for run in runs}
         for future in as_completed(futures):
-            yield futures[future], future.result()
+            yield futures[future], future.exception() or future.result()
 
 
-def _ray(runs: list[Run], address: str) -> Iterator[tuple[Run, dict[str, Any]]]:
-    """Each run's record as it ends, from Ray tasks (one CPU each) on the cluster at
+def _ray(runs: list[Run], address: str) -> Iterator[Outcome]:
+    """Each run's outcome as it ends, from Ray tasks (one CPU each) on the cluster at
     ``address``; the kernels are compiled first on every node, one task each."""
     import ray
     from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
@@ -76,26 +80,39 @@ def _ray(runs: list[Run], address: str) -> Iterator[tuple[Run, dict[str, Any]]]:
     pending = {task.remote(run): run for run in runs}
     while pending:
         ready, _ = ray.wait(list(pending), num_returns=1)
-        yield pending.pop(ready[0]), ray.get(ready[0])
+        run = pending.pop(ready[0])
+        try:
+            yield run, ray.get(ready[0])
+        except ray.exceptions.RayError as error:
+            yield run, error
 
 
 def run_missing(runs: list[Run], out: Path, workers: int = 2, address: str | None = None,
                 report: Callable[[str], None] = functools.partial(print, flush=True)) -> list[Run]:
-    """Run those of ``runs`` not done under ``out``, each result file written as its run ends
-    (``--out``'s layout: ``ALGORITHM/ENV_ID/seed_K.json``); ``report`` gets a line per run
-    with the progress and the estimated time left. Returns the runs it ran."""
-    todo = missing(runs, out)
+    """Run those of ``runs`` not done under ``out``, the costliest first, each result file
+    written as its run ends (``--out``'s layout: ``ALGORITHM/ENV_ID/seed_K.json``); ``report``
+    gets a line per run with the progress and the estimated time left. A run that fails is
+    reported and the others go on; then RuntimeError names the failed runs. Returns the runs
+    it ran."""
+    todo = sorted(missing(runs, out), key=lambda run: -run.cost)
     report(f"{len(runs) - len(todo)} of {len(runs)} runs done under {out}; {len(todo)} to run "
            + (f"on the Ray cluster at {address}" if address else f"in {workers} local processes"))
     if not todo:
         return []
     total, spent, start = sum(run.cost for run in todo), 0, time.perf_counter()
     records = _ray(todo, address) if address else _local(todo, workers)
+    failed = []
     for k, (run, record) in enumerate(records, start=1):
-        write_results(run.path(out), record, command=run.command(out))
         spent += run.cost
         elapsed = time.perf_counter() - start
+        left = f"elapsed {elapsed / 60:.1f} min, left ~{elapsed / spent * (total - spent) / 60:.1f} min"
+        if isinstance(record, Exception):
+            failed.append(run.name)
+            report(f"[{k}/{len(todo)}] {run.name} FAILED: {record!r}; {left}")
+            continue
+        write_results(run.path(out), record, command=run.command(out))
         report(f"[{k}/{len(todo)}] {run.name}: {100 * record['final']['rate']:.1f}% captured, "
-               f"{record['wall_s']:.0f} s; elapsed {elapsed / 60:.1f} min, "
-               f"left ~{elapsed / spent * (total - spent) / 60:.1f} min")
+               f"{record['wall_s']:.0f} s; {left}")
+    if failed:
+        raise RuntimeError(f"{len(failed)} run(s) failed (run again to retry them): {', '.join(failed)}")
     return todo

@@ -45,13 +45,15 @@ def versions() -> dict[str, str | None]:
 
 def execute(run: Run) -> dict[str, Any]:
     """Train and evaluate ``run`` on one torch thread; its record: the run's fields, versions,
-    machine, start time, wall seconds, steps trained, hyperparameters, learning curve
-    (``[steps, capture rate, training seconds]`` points) and the final evaluation."""
-    started, clock = datetime.datetime.now(datetime.timezone.utc), time.perf_counter()
+    machine, start time, wall and CPU seconds (the CPU's do not count time lost to other
+    processes), steps trained, hyperparameters, learning curve (``[steps, capture rate,
+    training seconds]`` points) and the final evaluation."""
+    started, clock, cpu = datetime.datetime.now(datetime.timezone.utc), time.perf_counter(), time.process_time()
     with torch_threads(TRAINER_THREADS):
         trained = _reference(run) if run.budget == 0 else _learner(run)
     return {**dataclasses.asdict(run), "versions": versions(), "machine": f"{platform.machine()}, {platform.node()}",
-            "started": started.isoformat(timespec="seconds"), "wall_s": time.perf_counter() - clock, **trained}
+            "started": started.isoformat(timespec="seconds"), "wall_s": time.perf_counter() - clock,
+            "cpu_s": time.process_time() - cpu, **trained}
 
 
 def _final(rate: CaptureRate, episodes: int) -> dict[str, Any]:
