@@ -119,7 +119,7 @@ def test_held_decides_once_the_ball_cannot_reach_the_mouth_before_the_time_limit
     sim = Simulator("goal", {"capture_rule": "held"})
     r = sim.model.ball_radius
     deep = sim.throw([0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0])
-    assert deep.captured and deep.reason == "cannot_reach_opening" and deep.time < 0.5
+    assert deep.captured and deep.reason == "cannot_leave" and deep.time < 0.5
     sim.reset()
     assert sim.throw([0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0], fast=False).captured
     sim.reset()

@@ -5,9 +5,12 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import gymnasium as gym
 import numpy as np
 import pytest
 
+import netgym
+from agents.oracle import BallisticOracle
 from netgym.config import load_scene
 from netgym.physics.frames import Film, FrameClock
 from netgym.physics.opening import Opening
@@ -25,11 +28,33 @@ def _past_the_plane(depth: float) -> np.ndarray:
     return point
 
 
-def test_reasons_are_the_strings_info_has_always_held() -> None:
-    assert [str(reason) for reason in Reason] == ["flies_away", "at_rest", "cannot_reach_opening", "crossed_line",
-                                                  "out_of_play", "time_limit"]
+def test_reasons_are_the_strings_info_holds() -> None:
+    assert [str(reason) for reason in Reason] == ["flies_away", "at_rest", "at_rest_in_net", "cannot_reach_opening",
+                                                  "cannot_leave", "crossed_line", "out_of_play", "time_limit",
+                                                  "time_limit_in_net"]
+    assert Reason.CANNOT_REACH_OPENING.for_outcome(True) is Reason.CANNOT_LEAVE
+    assert Reason.CANNOT_REACH_OPENING.for_outcome(False) is Reason.CANNOT_REACH_OPENING
     assert Reason.AT_REST == "at_rest" and f"{Reason.TIME_LIMIT}" == "time_limit"
     assert Reason("out_of_play") is Reason.OUT_OF_PLAY
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("env_id", [i for i in netgym.ENVIRONMENTS if i != "NetCatchPixels-v0"])
+def test_no_reason_labels_both_outcomes(env_id: str) -> None:
+    """Oracle and random episodes of every id: each reason seen comes with one outcome only."""
+    env = gym.make(env_id, disable_env_checker=True)
+    oracle = BallisticOracle(env.unwrapped.scene)
+    rng = np.random.default_rng(0)
+    outcomes: dict[str, set[bool]] = {}
+    for episode in range(16):
+        obs, _ = env.reset(seed=episode)
+        done = False
+        while not done:
+            action = oracle.predict(obs)[0] if episode % 2 else rng.uniform(-1, 1, 3).astype(np.float32)
+            obs, _, done, _, info = env.step(action)
+            outcomes.setdefault(info["reason"], set()).add(bool(info["captured"]))
+    assert {True, False} <= set().union(*outcomes.values())  # both outcomes occurred
+    assert all(len(seen) == 1 for seen in outcomes.values()), outcomes
 
 
 def test_the_scene_names_its_rule_once() -> None:

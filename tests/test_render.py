@@ -93,13 +93,13 @@ def test_captions_name_the_throw_and_its_outcome_once_decided() -> None:
     fps = NetCatchEnv.metadata["render_fps"]
     film = EpisodeFilm(2, fps)
     film.start(["reset"])
-    film.add_throw([f"a{i}" for i in range(30)], {"captured": True, "reason": "at_rest", "sim_time": 0.5})
+    film.add_throw([f"a{i}" for i in range(30)], {"captured": True, "reason": "at_rest_in_net", "sim_time": 0.5})
     film.add_throw([f"b{i}" for i in range(10)], {"captured": False, "reason": "flies_away", "sim_time": 0.0})
     held = round(HOLD * fps)
     assert film.frames == ["reset"] + [f"a{i}" for i in range(30)] + ["a29"] * held + \
         [f"b{i}" for i in range(10)] + ["b9"] * held
     assert film.captions[:16] == ["throw 1/2"] * 16                  # the reset and 0.5 s of flight
-    assert set(film.captions[16:31 + held]) == {"throw 1/2: caught (at rest)"}
+    assert set(film.captions[16:31 + held]) == {"throw 1/2: caught (at rest in net)"}
     assert set(film.captions[31 + held:]) == {"throw 2/2: missed (flies away)"}
     frame = np.full((360, 480, 3), 128, dtype=np.uint8)
     captioned = caption_frame(frame, film.captions[-1])

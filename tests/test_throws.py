@@ -95,7 +95,7 @@ def test_a_ball_that_stops_on_the_ground_beside_the_sleeping_net_is_decided_at_r
 def test_a_lob_into_the_basket_is_captured_early_and_stays() -> None:
     sim = _sim("basket")
     result = sim.throw([5.0, 0.0, 1.8], [-5.0, 0.0, 6.1])
-    assert result.captured and result.reason in ("cannot_reach_opening", "at_rest")
+    assert result.captured and result.reason in ("cannot_leave", "at_rest_in_net")
     assert result.time < 0.5 * sim.config.simulation.time_limit
     assert sim.n_balls == 1
     second = sim.throw([0.0, 5.0, 1.8], [0.0, -5.0, 6.1])  # lands on the first ball

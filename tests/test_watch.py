@@ -117,7 +117,7 @@ def test_a_check_a_rounding_error_after_the_last_is_the_same_instant() -> None:
     position, velocity = sample_throws("basket", 90, seed=99)[89]
     sim = Simulator("basket", {"simulation.integrator": "implicit_euler", "simulation.dt": 0.01}, check_stability=False)
     result = sim.throw(position, velocity)
-    assert result.captured and result.reason == "cannot_reach_opening"
+    assert result.captured and result.reason == "cannot_leave"
     rest = _window()
     remember(rest, 0.14, np.zeros((2, 3)))
     remember(rest, 0.14 + 4.4e-16, np.ones((2, 3)))

@@ -19,6 +19,7 @@ from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, S
                                   throw_feedback)
 from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
 from netgym.physics.frames import Film, FrameClock
+from netgym.physics.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
 from netgym.physics.throws import ThrowResult
 from netgym.replay import Scenery, Snapshot
@@ -87,9 +88,11 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     ## Info
 
     ``captured`` (bool, by the scene's ``capture_rule``), ``reason`` (how the outcome was
-    decided: ``"flies_away"``, the ball left the net's surroundings for good; ``"at_rest"``;
-    ``"cannot_reach_opening"``, no energy left to get it out, or in; ``"crossed_line"``, a goal,
-    and ``"out_of_play"``, under ``line``; ``"time_limit"``), ``final_position`` of the ball,
+    decided, each reason of one outcome: a miss ``"flies_away"``, the ball left the net's
+    surroundings for good, ``"at_rest"`` outside the net, ``"cannot_reach_opening"``, no energy
+    left to get it in, ``"out_of_play"`` under ``line``, ``"time_limit"``; caught
+    ``"at_rest_in_net"``, ``"cannot_leave"``, no energy left to get it back out,
+    ``"crossed_line"`` under ``line``, ``"time_limit_in_net"``), ``final_position`` of the ball,
     ``sim_time`` (simulated seconds of the throw), ``substeps`` (every integration substep the
     step took), split into ``throw_substeps`` and ``settle_substeps`` (bringing the net and the
     balls in it to rest after this throw, for the next one: the pause between throws, none after
@@ -132,6 +135,10 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
       elsewhere (BENCHMARKS section 9).
       Options added without changing v0's dynamics: ``reset(options=...)``, ``render_settling``,
       and the variation arguments ``wind``, ``launch_noise``, ``feedback`` (off by default).
+      ``info["reason"]`` labels one outcome each: a caught ball decided at rest, out of energy
+      or at the time limit is ``"at_rest_in_net"``, ``"cannot_leave"`` or
+      ``"time_limit_in_net"`` (it shared ``"at_rest"``, ``"cannot_reach_opening"`` and
+      ``"time_limit"`` with misses); the dynamics are unchanged.
     - ``NetCatchWindy-v0``, ``NetCatchNoisy-v0``, ``NetCatchRandomized-v0`` and
       ``NetCatchPixels-v0``: new in netgym 0.1.
     """
@@ -240,7 +247,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         drawn: dict[str, Any] = dict(self._draws)
         if self.wind_range is not None:
             drawn["air.wind"] = self.wind_range.draw(self.np_random).tolist()
-        self._set_scene(scene.replace(drawn) if drawn else scene)
+        family = None if self.randomize is None else family_of(scene, self.randomize.ranges)
+        self._set_scene(scene.replace(drawn) if drawn else scene, family)
         self._overrides = overrides
         self.sim.reset()
         self._last_throw = np.zeros(FEEDBACK_SIZE)
@@ -291,11 +299,12 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             checked["overrides"] = dict(overrides)
         return checked
 
-    def _set_scene(self, config: SceneConfig) -> None:
-        """Simulate ``config`` from now on; refused (nothing changed) if the spaces would change."""
+    def _set_scene(self, config: SceneConfig, family: NetFamily | None = None) -> None:
+        """Simulate ``config`` from now on (a member of ``family``, nets drawn per episode, if
+        given); refused (nothing changed) if the spaces would change."""
         if config == self.scene:
             return
-        sim = Simulator(config)
+        sim = Simulator(config, like=self.sim) if family is None else family.simulator(config, like=self.sim)
         centre, floor = sim.opening.centre, float(sim.state.x[:, 2].min())
         if _observation_space(config, centre, floor, self.feedback) != self.observation_space:
             raise InvalidArgumentError("these overrides change the observation space's bounds (the net's geometry "

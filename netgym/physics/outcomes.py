@@ -19,14 +19,28 @@ from netgym.errors import InvalidArgumentError
 from netgym.physics.opening import Opening
 
 class Reason(StrEnum):
-    """Why a throw's outcome was decided (equal to its string value)."""
+    """Why a throw's outcome was decided (equal to its string value). Each labels one outcome:
+    a decision that can end either way (the ball at rest, out of energy, out of time) has a
+    reason for a caught ball and one for a miss (:meth:`for_outcome`)."""
 
-    FLIES_AWAY = "flies_away"                          # it left the net's surroundings for good
-    AT_REST = "at_rest"                                # it and everything near it stopped moving
-    CANNOT_REACH_OPENING = "cannot_reach_opening"      # no energy left to get it to the opening
-    CROSSED_LINE = "crossed_line"                      # ``line``: wholly over the line inside the frame, a goal
-    OUT_OF_PLAY = "out_of_play"                        # ``line``: wholly over the line beside the frame
-    TIME_LIMIT = "time_limit"                          # the scene's simulation.time_limit ran out
+    FLIES_AWAY = "flies_away"                          # a miss: it left the net's surroundings for good
+    AT_REST = "at_rest"                                # a miss: it and everything near it stopped moving
+    AT_REST_IN_NET = "at_rest_in_net"                  # caught: it and everything near it stopped moving
+    CANNOT_REACH_OPENING = "cannot_reach_opening"      # a miss: no energy left to get it to the opening
+    CANNOT_LEAVE = "cannot_leave"                      # caught: no energy left to get it back out
+    CROSSED_LINE = "crossed_line"                      # caught, ``line``: wholly over the line inside the frame
+    OUT_OF_PLAY = "out_of_play"                        # a miss, ``line``: wholly over the line beside the frame
+    TIME_LIMIT = "time_limit"                          # a miss: the scene's simulation.time_limit ran out
+    TIME_LIMIT_IN_NET = "time_limit_in_net"            # caught: the time limit ran out with it in the net
+
+    def for_outcome(self, captured: bool) -> "Reason":
+        """The reason that says how a throw with this outcome (``captured``) was decided: the
+        caught counterpart of a decision that can end either way, else this one."""
+        return _CAUGHT.get(self, self) if captured else self
+
+
+_CAUGHT = {Reason.AT_REST: Reason.AT_REST_IN_NET, Reason.CANNOT_REACH_OPENING: Reason.CANNOT_LEAVE,
+           Reason.TIME_LIMIT: Reason.TIME_LIMIT_IN_NET}
 
 
 class HeldRule:

@@ -45,7 +45,8 @@ class FastPathTuning:
     awake_margin: float = 0.5     # m the moving net may reach beyond its current bounding box
     time_epsilon: float = 1e-9    # s: instants closer than this are the same
     air_piece: float = 0.1        # s: longest piece of a flight through air between two clearance checks
-    sleep_speed: float = 1e-2     # m/s: a net (and balls in it) slower than this may stop being integrated
+    sleep_speed: float = 5e-2     # m/s: a net (and balls in it) slower than this may stop being integrated
+                                  # (half the pause's settle speed; 1 cm/s kept a jittering net awake)
     line_time_tolerance: float = 1e-4  # s: a flown ball's capture-rule decision comes at most this late
     miss_filmed_after_landing: float = 0.5  # s of a missed ball's flight filmed after it first lands
     rule_filmed: float = 0.5      # s filmed on after the capture rule decided (a goal running into the net)
@@ -66,8 +67,8 @@ class ThrowResult:
     :param final_velocity: ball velocity then (m/s).
     :param time: simulated seconds from launch to the decision.
     :param substeps: integration substeps spent on the throw (0 when decided in closed form).
-    :param reason: why it was decided then, a :class:`~netgym.physics.outcomes.Reason` (equal to
-        its string value, as ``info["reason"]`` reports it).
+    :param reason: why it was decided then, a :class:`~netgym.physics.outcomes.Reason` of this
+        outcome (equal to its string value, as ``info["reason"]`` reports it).
     :param settle_substeps: integration substeps spent bringing the net to rest before the launch.
     :param settle_time: simulated seconds of that settling.
     """
@@ -270,7 +271,8 @@ class Throw:
         captured = self.rule.captured(course.decision, entered, sim.opening.contains(s.x[row]))
         return ThrowResult(captured=captured, entered=entered,
                            final_position=s.x[row].copy(), final_velocity=s.v[row].copy(),
-                           time=s.time - course.launched, substeps=sim.substeps - course.substeps, reason=reason)
+                           time=s.time - course.launched, substeps=sim.substeps - course.substeps,
+                           reason=reason.for_outcome(captured))
 
     def _film_after(self, reason: Reason, t_limit: float) -> Plan:
         """When filmed: a miss decided in closed form flown on to its landing, a ball the capture
