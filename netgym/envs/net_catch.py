@@ -121,7 +121,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     ## Registered ids
 
     Every id in :data:`netgym.ENVIRONMENTS` (the defaults above, or a variant's arguments); each
-    has its card in the docs, generated from this docstring and the id's registration.
+    has its card in the docs, generated from this docstring, the id's registration and the env
+    it makes.
 
     ## Version History
 
