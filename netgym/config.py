@@ -195,19 +195,27 @@ class SceneConfig:
     air: AirConfig = AirConfig()
 
     def replace(self, overrides: Mapping[str, Any]) -> "SceneConfig":
-        """Return a validated copy with dotted fields replaced, e.g. ``{"simulation.dt": 5e-4}``."""
-        table = to_dict(self)
+        """Return a validated copy with dotted fields replaced, e.g. ``{"simulation.dt": 5e-4}``.
+
+        Each new value is validated as :func:`from_dict` would, the untouched fields are shared,
+        and the whole scene is checked for consistency again."""
+        cfg = self
         for dotted, value in overrides.items():
-            *parents, leaf = dotted.split(".")
-            node = table
-            for key in parents:
-                if not isinstance(node.get(key), dict):
-                    raise ConfigError(f"unknown field {dotted!r}")
-                node = node[key]
-            if leaf not in node:
-                raise ConfigError(f"unknown field {dotted!r}")
-            node[leaf] = value
-        return from_dict(table)
+            cfg = _replaced(cfg, dotted.split("."), value, dotted)
+        _check_consistency(cfg)
+        return cfg
+
+
+def _replaced(node: Any, keys: list[str], value: Any, dotted: str) -> Any:
+    """A copy of the config ``node`` with the field at ``keys`` (its path below ``node``) set to
+    ``value``, validated."""
+    head, *rest = keys
+    field = next((f for f in dataclasses.fields(node) if f.name == head), None)
+    child = getattr(node, head, None)
+    if field is None or (rest and not dataclasses.is_dataclass(child)):
+        raise ConfigError(f"unknown field {dotted!r}")
+    new = _replaced(child, rest, value, dotted) if rest else _convert(value, _hints(type(node))[head], dotted, field)
+    return dataclasses.replace(node, **{head: new})
 
 
 def _range_text(spec: tuple[float, float, bool, bool]) -> str:

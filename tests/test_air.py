@@ -140,3 +140,30 @@ def test_wind_power_bound_holds_for_any_velocity() -> None:
         power = -mass * k * np.linalg.norm(u) * u @ v
         assert power <= air.wind_power_bound(mass, k, wind) + 1e-12
     assert air.wind_power_bound(mass, k, CALM) == 0.0 and air.wind_power_bound(mass, 0.0, np.ones(3)) == 0.0
+
+
+def test_a_ball_ruled_out_never_comes_back() -> None:
+    """air.cannot_reach is sound: of random balls outside a box (random velocities, horizontal
+    winds up to 3 m/s, strong drag, the ground's bounces and friction), none it rules out comes
+    within the box's horizontal extent before the horizon (checked every 10 ms); it rules out
+    most of those that stay away, and some it keeps do come in (the check can see an entry)."""
+    rng = np.random.default_rng(7)
+    box = np.array([-1.0, -1.5, 0.0, 1.0, 1.5, 2.5])
+    ground = flight.Ground(gravity=-9.81, **GROUND)
+    ruled_out, stayed_away, came_back = 0, 0, 0
+    for _ in range(300):
+        p = np.array([rng.uniform(-6.0, 6.0), rng.uniform(-6.0, 6.0), rng.uniform(0.3, 4.0)])
+        if box[0] <= p[0] <= box[3] and box[1] <= p[1] <= box[4]:
+            continue
+        v, wind = rng.normal(0.0, 5.0, 3), np.append(rng.uniform(-3.0, 3.0, 2), 0.0)
+        horizon = rng.uniform(0.5, 6.0)
+        out = air.cannot_reach(p, v, wind, box, horizon)
+        entered = False
+        for _ in range(round(horizon / 0.01)):
+            air.fly(p, v, 0.01, 0.2, wind, ground, air.MAX_FLIGHT_STEP)
+            entered = entered or bool(box[0] <= p[0] <= box[3] and box[1] <= p[1] <= box[4])
+        assert not (out and entered)
+        ruled_out += out
+        stayed_away += not entered
+        came_back += entered
+    assert came_back > 10 and ruled_out > 0.5 * stayed_away

@@ -18,6 +18,7 @@ from netgym.physics.jit import kernel
 from netgym.physics.rows import copy_vector
 
 MAX_FLIGHT_STEP = 1e-3   # s: longest RK4 step of the fast path's flight through air
+SPEED_SLACK = 0.05       # m/s: added to the speed bound of :func:`cannot_reach` (sliding's explicit steps)
 CONTACT_ITERATIONS = 4   # Newton iterations on the time a step meets the ground
 
 
@@ -130,6 +131,26 @@ def held_by_friction(v, gravity, k, wind, radius, friction, p):
         return False
     a0, a1, _ = _acceleration(0.0, 0.0, 0.0, 0.0, k, wind)
     return math.sqrt(a0 * a0 + a1 * a1) <= friction * -gravity
+
+
+@kernel
+def cannot_reach(p, v, wind, box, horizon):
+    """True if a lone ball at ``p``, ``v`` cannot come into ``box`` (6,: min x, y, z, max x, y,
+    z) within ``horizon`` seconds: along a horizontal axis it lies outside the box farther than
+    it can travel towards it. Along each horizontal axis its velocity stays between its value
+    now, the wind's and zero (drag only relaxes it towards the wind's, the ground's friction
+    towards zero), so it travels towards the box at most ``horizon`` times the largest of
+    those towards it (plus :data:`SPEED_SLACK`)."""
+    for c in range(2):
+        if p[c] < box[c]:
+            gap, towards = box[c] - p[c], max(v[c], wind[c], 0.0)
+        elif p[c] > box[c + 3]:
+            gap, towards = p[c] - box[c + 3], max(-v[c], -wind[c], 0.0)
+        else:
+            continue
+        if gap > horizon * (towards + SPEED_SLACK):
+            return True
+    return False
 
 
 def wind_power_bound(mass: float, k: float, wind: np.ndarray) -> float:

@@ -108,8 +108,8 @@ def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
     piece (:func:`~netgym.physics.air.fly`, bounces and sliding included) while each certainly
     ends undecided; returns the time reached (``x``, ``v`` and ``entered`` moved on in place).
 
-    A piece starts only while the ball is not lying outside ``box`` held by friction (then it
-    flies away) and is farther than ``watch.clearance`` from the net, the poles and the other
+    A piece starts only while the ball is not outside ``box`` for good (lying there held by
+    friction, or farther than it can travel back before the deadline: then it flies away) and is farther than ``watch.clearance`` from the net, the poles and the other
     balls; it lasts :func:`air_safe_time` (at most ``piece``), ends on the step grid from
     ``watch.launched``, and is flown only if it stops short of the capture rule's depth and
     the deadline is more than half a step after it. These are the pieces the throw would fly
@@ -124,7 +124,8 @@ def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
         outside = False
         for c in range(3):
             outside = outside or not box[c] <= p[c] <= box[c + 3]
-        if outside and air.held_by_friction(u, gravity, k, wind, radius, ground.friction, p):
+        if outside and (air.held_by_friction(u, gravity, k, wind, radius, ground.friction, p)
+                        or air.cannot_reach(p, u, wind, box, watch.deadline - t)):
             return t
         gap = clearance(x, n_net, row, radius, model.segments, model.poles)
         if gap <= watch.clearance:

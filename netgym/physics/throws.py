@@ -425,14 +425,16 @@ class Throw:
 
     def _never_enters(self, lo: np.ndarray, hi: np.ndarray, horizon: float) -> bool:
         """The ball cannot come into the box ``lo``..``hi`` within ``horizon``: its parabola
-        (with bounces) misses it; through air, it lies outside, held by friction."""
+        (with bounces) misses it; through air, it lies outside, held by friction, or too far to
+        come back within ``horizon`` (:func:`~netgym.physics.air.cannot_reach`)."""
         s, m, g = self.sim.state, self.sim.model, self.ground
         p, v = s.x[self.ball.row], s.v[self.ball.row]
         if not ((p < lo).any() or (p > hi).any()):
             return False  # inside it already
         if m.ball_drag == 0.0:
             return flight.entry_time(p, v, lo, hi, g, horizon) is None
-        return air.held_by_friction(v, m.gravity, m.ball_drag, m.wind, g.radius, g.friction, p)
+        return (air.held_by_friction(v, m.gravity, m.ball_drag, m.wind, g.radius, g.friction, p)
+                or air.cannot_reach(p, v, m.wind, np.concatenate((lo, hi)), horizon))
 
     def _safe_time(self, gap: float) -> float:
         """A time within which the ball cannot travel ``gap``."""
@@ -482,7 +484,8 @@ class Throw:
         the box ``lo``..``hi`` around everything else), it is ``at_rest``, or it can no longer
         reach the opening (``unreachable``: the energy bound, which counts, besides the energy
         free now, all the wind could still feed the balls before the deadline)."""
-        if self._never_enters(lo, hi, math.inf):
+        through_air = self.sim.model.ball_drag != 0.0  # then the time left bounds how far it can come back
+        if self._never_enters(lo, hi, self.course.deadline - self.sim.state.time if through_air else math.inf):
             return Reason.FLIES_AWAY
         if at_rest:
             return Reason.AT_REST
