@@ -219,3 +219,15 @@ def test_evaluate_names_both_envs_when_the_model_cannot_read_the_one_asked_for()
     assert done.returncode == 2 and "Unexpected observation shape" not in done.stderr
     assert "error: agents/pretrained/ppo_windy.zip was trained on NetCatchWindy-v0" in done.stderr
     assert "NetCatch-v0's have shape (7,)" in done.stderr
+
+
+@pytest.mark.slow
+def test_contact_convergence_quick_writes_resumable_results(tmp_path: Path) -> None:
+    """The quick run prints every table and writes its result file; started again with the same
+    settings it measures nothing more and prints the same tables."""
+    results = tmp_path / "convergence.json"
+    out = _run("scripts/contact_convergence.py", "--quick", "--results", str(results))
+    figures = read_results(results)["figures"]
+    assert figures["complete"] and len(figures["ensemble"]) == figures["ensemble_size"] == 2
+    assert "first 10 ms of contact" in out and "| rk4 |" in out
+    assert _run("scripts/contact_convergence.py", "--quick", "--results", str(results)) == out

@@ -28,17 +28,19 @@ class Run:
     wall_per_sim_s: float
 
 
-def strike(integrator: str, dt: float, seconds: float = STRIKE_SECONDS) -> Run:
-    """Simulate the strike scenario; time only the stepping (kernels compiled before)."""
+def strike(integrator: str, dt: float, seconds: float = STRIKE_SECONDS,
+           launch: tuple[np.ndarray, np.ndarray] = STRIKE, sample: float = SAMPLE) -> Run:
+    """Simulate the strike scenario (the ball from ``launch``, position and velocity), its ball
+    sampled every ``sample`` seconds; time only the stepping (kernels compiled before)."""
     sim = Simulator("basket", {"simulation.integrator": integrator, "simulation.dt": dt}, check_stability=False)
     sim.step(1)  # compile outside the timed region
     sim.reset()
-    sim.launch_ball(*STRIKE)
-    per_sample = round(SAMPLE / dt)
-    if abs(per_sample * dt - SAMPLE) > 1e-9 * SAMPLE:
-        raise InvalidArgumentError(f"dt = {dt:g} s does not divide the sampling interval {SAMPLE:g} s")
+    sim.launch_ball(*launch)
+    per_sample = round(sample / dt)
+    if abs(per_sample * dt - sample) > 1e-9 * sample:
+        raise InvalidArgumentError(f"dt = {dt:g} s does not divide the sampling interval {sample:g} s")
     samples, wall = [], 0.0
-    for _ in range(round(seconds / SAMPLE)):
+    for _ in range(round(seconds / sample)):
         start = time.perf_counter()
         sim.step(per_sample)
         wall += time.perf_counter() - start
