@@ -19,7 +19,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from netgym.bench.contact_convergence import (ENSEMBLE_OFFSET, LADDERS, QUICK_LADDERS, REFERENCE_DT, SAMPLE,
-                                              ensemble_launches, measure_strike, summary)
+                                              ensemble_launches, measure_strike)
 from netgym.bench.convergence_table import block
 from netgym.bench.results import read_results, write_results
 from netgym.bench.work_precision import STRIKE, STRIKE_SECONDS
@@ -45,8 +45,7 @@ def main() -> None:
     bar = tqdm(total=runs_per_strike * (len(launches) - len(kept)), desc="runs of every strike", unit="run")
     for i in range(len(kept), len(launches)):
         kept.append(measure_strike(sim, launches[i], ladders, seconds, reference_dt, progress=bar.update))
-        figures = {**settings, "strike": kept[0], "ensemble": kept[1:], "complete": len(kept) == len(launches),
-                   "strike_summary": summary(kept[:1]), "ensemble_summary": summary(kept[1:] or kept[:1])}
+        figures = {**settings, "strike": kept[0], "ensemble": kept[1:], "complete": len(kept) == len(launches)}
         write_results(args.results, figures)
     bar.close()
     print(block(args.results))

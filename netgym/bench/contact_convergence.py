@@ -41,7 +41,7 @@ LADDERS = {
 QUICK_LADDERS = {integrator: dts[:2] for integrator, dts in LADDERS.items()}
 ENSEMBLE_OFFSET = 0.03           # m: the ensemble's launch points lie within this of the strike's
 FLAG_FACTOR = 10.0               # a row's error below this many self-differences is flagged
-ROUND_OFF = 1e-12                # m: errors below this are round-off, no slope is fitted to them
+ROUND_OFF = 1e-10                # m: errors below this are round-off, no slope is fitted to them
 
 
 class Strike:
@@ -122,10 +122,11 @@ def ensemble_launches(count: int, seed: int = 0) -> list[tuple[np.ndarray, np.nd
     return launches
 
 
-def fitted_slope(dts: list[float], errors: list[float]) -> float:
-    """Least-squares slope of log error against log dt (NaN with fewer than two points above
-    round-off, :data:`ROUND_OFF`)."""
-    points = [(math.log(d), math.log(e)) for d, e in zip(dts, errors) if e > ROUND_OFF and math.isfinite(e)]
+def fitted_slope(dts: list[float], errors: list[float], floor: float = ROUND_OFF) -> float:
+    """Least-squares slope of log error against log dt over the errors above ``floor`` (at
+    least round-off, :data:`ROUND_OFF`); NaN with fewer than two of them."""
+    floor = max(floor, ROUND_OFF)
+    points = [(math.log(d), math.log(e)) for d, e in zip(dts, errors) if e > floor and math.isfinite(e)]
     if len(points) < 2:
         return math.nan
     x, y = np.array(points).T
@@ -140,9 +141,10 @@ def flagged(error: float, self_difference: float) -> bool:
 def summary(strikes: list[dict]) -> dict:
     """Per integrator, dt and phase over ``strikes`` (results of :func:`measure_strike` with the
     same ladders): the median and 90th percentile of the errors, the share of strikes whose row
-    is flagged, the median wall time; per integrator and phase, the slope fitted to the medians
-    (all of them, and the finest three) and whether the medians fall with each halving; the
-    reference's self-difference, median and max over the strikes."""
+    is flagged, the median wall time; the reference's self-difference, median and max over the
+    strikes; per integrator and phase, the slope fitted to the medians above ten times the
+    median self-difference (all of them, and the finest three such) and whether the medians
+    fall with each halving."""
     rows: list[dict] = []
     for i, first in enumerate(strikes[0]["rows"]):
         runs = [(s["rows"][i], s["self_difference"]) for s in strikes if not s["rows"][i]["diverged"]]
@@ -154,16 +156,21 @@ def summary(strikes: list[dict]) -> dict:
                 "median": float(np.median(errors)), "p90": float(np.percentile(errors, 90)),
                 "flagged": float(np.mean([flagged(r["errors"][phase], d[phase]) for r, d in runs]))}
         rows.append(cell)
+    reference = {phase: {"median": float(np.median([s["self_difference"][phase] for s in strikes])),
+                         "max": float(np.max([s["self_difference"][phase] for s in strikes]))} for phase in PHASES}
     slopes = []
     for integrator in dict.fromkeys(row["integrator"] for row in rows):
         usable = [row for row in rows if row["integrator"] == integrator and row["strikes"]]
-        dts = [row["dt"] for row in usable]
         for phase in PHASES:
-            medians = [row[phase]["median"] for row in usable]
-            slopes.append({"integrator": integrator, "phase": phase, "slope": fitted_slope(dts, medians),
-                           "finest_three": fitted_slope(dts[-3:], medians[-3:]),
-                           "monotone": all(b < a for a, b in zip(medians, medians[1:]))})
-    return {"strikes": len(strikes), "rows": rows, "slopes": slopes,
-            "self_difference": {phase: {"median": float(np.median([s["self_difference"][phase] for s in strikes])),
-                                        "max": float(np.max([s["self_difference"][phase] for s in strikes]))}
-                                for phase in PHASES}}
+            floor = FLAG_FACTOR * reference[phase]["median"]
+            points = [(row["dt"], row[phase]["median"]) for row in usable]
+            resolved = [(dt, e) for dt, e in points if e > max(floor, ROUND_OFF)]
+            slopes.append({"integrator": integrator, "phase": phase,
+                           "slope": fitted_slope(*_columns(points), floor),
+                           "finest_three": fitted_slope(*_columns(resolved[-3:]), floor),
+                           "monotone": all(b[1] < a[1] for a, b in zip(points, points[1:]))})
+    return {"strikes": len(strikes), "rows": rows, "slopes": slopes, "self_difference": reference}
+
+
+def _columns(points: list[tuple[float, float]]) -> tuple[list[float], list[float]]:
+    return [p[0] for p in points], [p[1] for p in points]

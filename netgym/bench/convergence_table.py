@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from netgym.bench.contact_convergence import PHASES, flagged
+from netgym.bench.contact_convergence import PHASES, flagged, summary
 from netgym.bench.results import read_results
 
 
@@ -20,6 +20,12 @@ def _error(value: float, mark: bool) -> str:
 
 def _slope(value: float) -> str:
     return "-" if math.isnan(value) else f"{value:.2f}"
+
+
+def _monotone(slope: Mapping[str, Any]) -> str:
+    if math.isnan(slope["slope"]):
+        return "-"  # nothing the reference resolves
+    return "yes" if slope["monotone"] else "no"
 
 
 def strike_table(strike: Mapping[str, Any]) -> str:
@@ -38,14 +44,14 @@ def strike_table(strike: Mapping[str, Any]) -> str:
 
 
 def slope_table(one: Mapping[str, Any], many: Mapping[str, Any]) -> str:
-    """Fitted slopes by integrator and phase: on the report's strike (``one``) and on the
-    ensemble's medians (``many``), over every dt and over the finest three; ``monotone``: the
-    ensemble's medians fall with each halving."""
+    """Fitted slopes by integrator and phase (over the errors the reference resolves): on the
+    report's strike (``one``) and on the ensemble's medians (``many``), over every dt and over
+    the finest three; ``monotone``: the ensemble's medians fall with each halving."""
     lines = ["| integrator | phase | slope, the strike | slope, ensemble median | finest three, ensemble | "
              "monotone (ensemble) |", "|---|---|---:|---:|---:|---|"]
     for a, b in zip(one["slopes"], many["slopes"]):
         lines.append(f"| {a['integrator']} | {a['phase']} | {_slope(a['slope'])} | {_slope(b['slope'])} | "
-                     f"{_slope(b['finest_three'])} | {'yes' if b['monotone'] else 'no'} |")
+                     f"{_slope(b['finest_three'])} | {_monotone(b)} |")
     return "\n".join(lines)
 
 
@@ -74,7 +80,7 @@ def block(path: Path) -> str:
         return f"Not measured yet: `python scripts/contact_convergence.py --results docs/results/{path.name}`."
     record = read_results(path)
     figures = record["figures"]
-    strike, many = figures["strike"], figures["ensemble_summary"]
+    strike, many = figures["strike"], summary(figures["ensemble"] or [figures["strike"]])
     reference = ", ".join(f"{p} {strike['self_difference'][p]:.1e} m" for p in PHASES)
     spread = ", ".join(f"{p} {many['self_difference'][p]['median']:.1e} / {many['self_difference'][p]['max']:.1e} m"
                        for p in PHASES)
@@ -87,7 +93,7 @@ def block(path: Path) -> str:
         f"Fitted slopes (log error against log dt). Ensemble: {many['strikes']} strikes{done}, launch points "
         f"within {1e2 * figures['offset']:.0f} cm of the strike's; the reference's self-difference, median / max "
         f"over them: {spread}.",
-        slope_table(figures["strike_summary"], many),
+        slope_table(summary([strike]), many),
         ensemble_table(many),
         f"Source: `docs/results/{path.name}`, written by `{record['command']}` ({record['written']}, "
         f"{record['machine']}; {figures['strike_seconds']} s simulated a strike, the ball sampled every "
