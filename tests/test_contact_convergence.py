@@ -11,7 +11,7 @@ import pytest
 
 from netgym.bench.contact_convergence import (ENSEMBLE_OFFSET, PHASES, QUICK_LADDERS, ensemble_launches,
                                               fitted_slope, flagged, measure_strike, phase_errors, summary)
-from netgym.bench.convergence_table import slope_table, strike_table
+from netgym.bench.convergence_table import default_cost, slope_table, strike_table
 from netgym.bench.work_precision import STRIKE
 from netgym.physics.simulator import Simulator
 
@@ -71,3 +71,4 @@ def test_tables_mark_rows_the_reference_cannot_resolve(quick_strike: dict) -> No
     assert len(slope_table(one, one).splitlines()) == 2 + len(QUICK_LADDERS) * len(PHASES)
     assert all(math.isnan(s["slope"]) for s in one["slopes"] if s["phase"] == PHASES[0])
     assert one["rows"][0][PHASES[1]]["median"] == quick_strike["rows"][0]["errors"][PHASES[1]]
+    assert default_cost(one).startswith("The default, imex_euler at 2 ms")

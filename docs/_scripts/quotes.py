@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
-from netgym.bench import roofline, speed_table  # noqa: E402
+from netgym.bench import convergence_table, roofline, speed_table  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
 
 REPORT = "docs/BENCHMARKS.md"
@@ -226,6 +226,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "rllib-throughput": rllib_throughput,
     "roofline": lambda: roofline.to_markdown(read_results(RESULTS / "roofline.json")),
     "variant-speed": lambda: speed_table.block(RESULTS / "variant_speed.json"),
+    "contact-convergence": lambda: convergence_table.block(RESULTS / "contact_convergence.json"),
     "variants-summary": variants_summary,
     "learning-curve": lambda: learning_curve("ppo_curve"),
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),

@@ -10,6 +10,7 @@ from typing import Any
 
 from netgym.bench.contact_convergence import PHASES, flagged, summary
 from netgym.bench.results import read_results
+from netgym.bench.settings import DEFAULT
 
 
 def _error(value: float, mark: bool) -> str:
@@ -73,6 +74,18 @@ def ensemble_table(many: Mapping[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def default_cost(many: Mapping[str, Any]) -> str:
+    """A sentence: the default setting's (:data:`~netgym.bench.settings.DEFAULT`) ensemble errors
+    by phase and wall time, or an empty string if the ladders do not hold it."""
+    found = [row for row in many["rows"] if (row["integrator"], row["dt"]) == DEFAULT and row["strikes"]]
+    if not found:
+        return ""
+    row = found[0]
+    phases = "; ".join(f"{p} {_error(row[p]['median'], False)} m (p90 {_error(row[p]['p90'], False)})" for p in PHASES)
+    return (f"The default, {DEFAULT[0]} at {1e3 * DEFAULT[1]:g} ms, over the ensemble (median): {phases}; "
+            f"{row['wall_per_sim_s']:.3g} wall s per simulated s.")
+
+
 def block(path: Path) -> str:
     """Every table of the result file at ``path`` with the reference's self-difference and the
     source line, or how to make the file."""
@@ -95,6 +108,7 @@ def block(path: Path) -> str:
         f"over them: {spread}.",
         slope_table(summary([strike]), many),
         ensemble_table(many),
+        *filter(None, [default_cost(many)]),
         f"Source: `docs/results/{path.name}`, written by `{record['command']}` ({record['written']}, "
         f"{record['machine']}; {figures['strike_seconds']} s simulated a strike, the ball sampled every "
         f"{1e3 * figures['sample']:g} ms)."])

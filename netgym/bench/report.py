@@ -12,6 +12,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from netgym.bench import (
+    convergence_table,
     creep,
     episode_agreement,
     episodes,
@@ -31,6 +32,8 @@ from netgym.bench.report_text import (
     ALIGNED_PASS_TEXT,
     BROAD_PHASE_TEXT,
     COMPILED_LOOPS_TEXT,
+    CONTACT_CONVERGENCE_NOTES,
+    CONTACT_CONVERGENCE_TEXT,
     CONTACT_ORDER_TEXT,
     CREEP_TEXT,
     DAMPER_SHARES_TEXT,
@@ -273,6 +276,9 @@ def to_markdown(report: Report) -> str:
             _roofline_table(), "<!-- /quote:roofline -->"]
     out += ["", "## 11. Every id's speed", "", VARIANT_SPEED_TEXT, "", "<!-- quote:variant-speed -->",
             speed_table.block(RESULTS / "variant_speed.json"), "<!-- /quote:variant-speed -->"]
+    out += ["", "## 12. Convergence through contact", "", CONTACT_CONVERGENCE_TEXT, "",
+            "<!-- quote:contact-convergence -->", convergence_table.block(RESULTS / "contact_convergence.json"),
+            "<!-- /quote:contact-convergence -->", "", CONTACT_CONVERGENCE_NOTES]
     return "\n".join(out) + "\n"
 
 
