@@ -19,7 +19,7 @@ import numpy as np
 from netgym.physics import air
 from netgym.physics.contacts import clearance
 from netgym.physics.flight import ground_time, sliding
-from netgym.physics.jit import kernel
+from netgym.physics.jit import inline_kernel, kernel
 from netgym.physics.opening import opening_depth
 from netgym.physics.stepping import update_entered
 
@@ -46,6 +46,18 @@ def on_step_grid(now, tau, launched, dt):
     ``launched`` + whole steps of ``dt``, or 0.0."""
     steps = math.floor((now + tau - launched) / dt + 1e-9)
     return max(0.0, launched + steps * dt - now)
+
+
+@inline_kernel
+def _move_ball(x, before, n_net, entered, opening, p, end):
+    """Move the ball whose position is the row ``p`` of ``x`` to ``end``, booking its crossing of
+    the opening along the chord (``before``: room for the balls' positions)."""
+    for b in range(before.shape[0]):
+        for c in range(3):
+            before[b, c] = x[n_net + b, c]
+    for c in range(3):
+        p[c] = end[c]
+    update_entered(x, before, n_net, entered, opening)
 
 
 @kernel
@@ -82,13 +94,8 @@ def approach(x, v, entered, model, ground, watch, box, time):
         end = (p[0] + u[0] * tau, p[1] + u[1] * tau, p[2] + u[2] * tau + 0.5 * model.gravity * tau * tau)
         if opening_depth(opening, end) >= watch.rule_depth:
             return t
-        for b in range(before.shape[0]):
-            for c in range(3):
-                before[b, c] = x[n_net + b, c]
-        for c in range(3):
-            p[c] = end[c]
+        _move_ball(x, before, n_net, entered, opening, p, end)
         u[2] += model.gravity * tau
-        update_entered(x, before, n_net, entered, opening)
         t = t + tau
 
 
@@ -139,10 +146,7 @@ def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
         air.fly(end_p, end_v, tau, k, wind, ground, air.MAX_FLIGHT_STEP)
         if opening_depth(opening, end_p) >= watch.rule_depth:
             return t
-        for b in range(before.shape[0]):
-            for c in range(3):
-                before[b, c] = x[n_net + b, c]
         for c in range(3):
-            p[c], u[c] = end_p[c], end_v[c]
-        update_entered(x, before, n_net, entered, opening)
+            u[c] = end_v[c]
+        _move_ball(x, before, n_net, entered, opening, p, end_p)
         t = t + tau
