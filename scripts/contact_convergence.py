@@ -7,7 +7,8 @@ it is done, and a run started again with the same settings measures only the mis
 
 Usage::
 
-    python scripts/contact_convergence.py --results docs/results/contact_convergence.json
+    python scripts/contact_convergence.py --results docs/results/contact_convergence.json \
+        --plot docs/figures/contact_convergence.png
     python scripts/contact_convergence.py --quick --results /tmp/convergence.json   # a smoke test
 """
 
@@ -19,8 +20,9 @@ from pathlib import Path
 from tqdm import tqdm
 
 from netgym.bench.contact_convergence import (ENSEMBLE_OFFSET, LADDERS, QUICK_LADDERS, REFERENCE_DT, SAMPLE,
-                                              ensemble_launches, measure_strike)
+                                              ensemble_launches, measure_strike, summary)
 from netgym.bench.convergence_table import block
+from netgym.bench.plots import plot_contact_convergence
 from netgym.bench.results import read_results, write_results
 from netgym.bench.work_precision import STRIKE, STRIKE_SECONDS
 from netgym.physics.simulator import Simulator
@@ -32,6 +34,7 @@ def main() -> None:
     parser.add_argument("--strikes", type=int, default=32, help="strikes of the ensemble")
     parser.add_argument("--quick", action="store_true", help="0.3 s strikes, two steps each, 2 strikes")
     parser.add_argument("--results", type=Path, required=True, help="the result file (JSON), resumed if it exists")
+    parser.add_argument("--plot", type=Path, help="also draw the ensemble's errors by phase to this PNG")
     args = parser.parse_args()
     ladders = QUICK_LADDERS if args.quick else LADDERS
     seconds, reference_dt = (0.3, REFERENCE_DT * 32) if args.quick else (STRIKE_SECONDS, REFERENCE_DT)
@@ -49,6 +52,9 @@ def main() -> None:
         write_results(args.results, figures)
     bar.close()
     print(block(args.results))
+    if args.plot is not None:
+        figures = read_results(args.results)["figures"]
+        plot_contact_convergence(summary(figures["ensemble"] or [figures["strike"]]), args.plot)
 
 
 def _resumable(path: Path, settings: dict) -> list[dict]:

@@ -223,11 +223,12 @@ def test_evaluate_names_both_envs_when_the_model_cannot_read_the_one_asked_for()
 
 @pytest.mark.slow
 def test_contact_convergence_quick_writes_resumable_results(tmp_path: Path) -> None:
-    """The quick run prints every table and writes its result file; started again with the same
-    settings it measures nothing more and prints the same tables."""
-    results = tmp_path / "convergence.json"
-    out = _run("scripts/contact_convergence.py", "--quick", "--results", str(results))
+    """The quick run prints every table, writes its result file and draws its figure; started
+    again with the same settings it measures nothing more and prints the same tables."""
+    results, figure = tmp_path / "convergence.json", tmp_path / "convergence.png"
+    out = _run("scripts/contact_convergence.py", "--quick", "--results", str(results), "--plot", str(figure))
     figures = read_results(results)["figures"]
     assert figures["complete"] and len(figures["ensemble"]) == figures["ensemble_size"] == 2
     assert "first 10 ms of contact" in out and "| rk4 |" in out
+    assert figure.read_bytes().startswith(b"\x89PNG")
     assert _run("scripts/contact_convergence.py", "--quick", "--results", str(results)) == out

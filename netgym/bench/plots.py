@@ -98,3 +98,39 @@ def plot_outcomes(rows: list[dict], path: Path) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_contact_convergence(many: dict, path: Path) -> None:
+    """Log-log ensemble error against dt, one panel per phase after the first contact (median
+    lines, 90th-percentile bands), one line per integrator, with the reference's median
+    self-difference and a first-order slope to read the others against; ``many``: a
+    :func:`~netgym.bench.contact_convergence.summary`."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from netgym.bench.contact_convergence import PHASES
+
+    phases = PHASES[1:]  # before the contact every method is at round-off
+    fig, axes = plt.subplots(1, len(phases), figsize=(11, 4.6), sharey=True)
+    for ax, phase in zip(axes, phases):
+        for integrator in dict.fromkeys(row["integrator"] for row in many["rows"]):
+            rows = [r for r in many["rows"] if r["integrator"] == integrator and r[phase] is not None]
+            dts = [1e3 * r["dt"] for r in rows]
+            line, = ax.loglog(dts, [r[phase]["median"] for r in rows], marker="o", label=integrator)
+            ax.fill_between(dts, [r[phase]["median"] for r in rows], [r[phase]["p90"] for r in rows],
+                            color=line.get_color(), alpha=0.12)
+        floor = many["self_difference"][phase]["median"]
+        ax.axhline(10 * floor, color="grey", linestyle=":", label="10x the reference's self-difference")
+        dts = np.array([0.0156, 2.0])
+        ax.loglog(dts, 2e-3 * dts, color="black", linestyle="--", linewidth=1, label="first order")
+        ax.set_title(f"{phase}: median, band to p90", fontsize=10)
+        ax.set_xlabel("dt (ms)")
+        ax.grid(alpha=0.3, which="both")
+    axes[0].set_ylabel("largest ball error in the phase (m)")
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"Convergence through contact: {many['strikes']} strikes into the basket, every integrator", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

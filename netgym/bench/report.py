@@ -277,7 +277,7 @@ def to_markdown(report: Report) -> str:
     out += ["", "## 11. Every id's speed", "", VARIANT_SPEED_TEXT, "", "<!-- quote:variant-speed -->",
             speed_table.block(RESULTS / "variant_speed.json"), "<!-- /quote:variant-speed -->"]
     out += ["", "## 12. Convergence through contact", "", CONTACT_CONVERGENCE_TEXT, "",
-            "<!-- quote:contact-convergence -->", convergence_table.block(RESULTS / "contact_convergence.json"),
+            "![contact convergence](figures/contact_convergence.png)", "", "<!-- quote:contact-convergence -->", convergence_table.block(RESULTS / "contact_convergence.json"),
             "<!-- /quote:contact-convergence -->", "", CONTACT_CONVERGENCE_NOTES]
     return "\n".join(out) + "\n"
 

@@ -396,7 +396,8 @@ VARIANT_SPEED_TEXT = (
     "stiffnesses once per process and interpolated, its stability taken from the drawn springs' corners.")
 
 CONTACT_CONVERGENCE_TEXT = (
-    "What the errors of section 1 are made of, phase by phase (`python scripts/contact_convergence.py`, "
+    "What the errors of section 1 are made of, phase by phase (`python scripts/contact_convergence.py --plot "
+    "docs/figures/contact_convergence.png`, "
     "`netgym/bench/contact_convergence.py`). The same strike, run from one settled net with every integrator over "
     "a ladder of halving steps (each its stable ones), its ball sampled every 2 ms; in each phase, before the "
     "first contact, the first 10 ms after it and the rest, the largest distance of the ball to the reference's. "
