@@ -14,6 +14,7 @@ Usage::
     python scripts/baselines.py --out runs/b --algos sac td3 --ids NetCatch-v0 --seeds 0 1
     python scripts/baselines.py --out runs/b --address auto           # on a running Ray cluster
     python scripts/baselines.py --quick --out /tmp/baselines          # about a minute, for CI
+    python scripts/baselines.py --report --out docs/results/baselines # the docs' report and figure
 """
 
 from __future__ import annotations
@@ -37,14 +38,17 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local processes (default: one a core)")
     parser.add_argument("--address", help="run on the Ray cluster at this address (e.g. auto) instead")
     parser.add_argument("--quick", action="store_true", help="tiny budgets, one seed, two cheap ids")
+    parser.add_argument("--report", action="store_true",
+                        help="run nothing: only write the report and figure from the result files under --out")
     return parser
 
 
 def main() -> None:
     """Parse arguments, run what is missing, write the report."""
     args = build_parser().parse_args()
-    runs = grid(args.algos, args.ids, args.seeds, quick=args.quick)
-    run_missing(runs, args.out, workers=args.workers, address=args.address)
+    if not args.report:
+        runs = grid(args.algos, args.ids, args.seeds, quick=args.quick)
+        run_missing(runs, args.out, workers=args.workers, address=args.address)
     print(f"wrote {write_report(args.out)}")
 
 

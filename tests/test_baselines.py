@@ -18,6 +18,7 @@ import pytest
 from scipy import stats
 
 from agents.baselines import grid as grid_module
+from agents.baselines import report
 from agents.baselines.grid import ALGORITHMS, BUDGETS, REFERENCES, grid
 from agents.baselines.runner import done, missing
 from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
@@ -222,3 +223,27 @@ def test_runs_go_to_a_ray_cluster_as_tasks_with_address(tmp_path: Path) -> None:
     runs = grid(["ppo"], ["NetCatch-v0"], quick=True)
     assert f"{len(runs)} to run on the Ray cluster" in finished.stdout
     assert all(done(run, tmp_path) for run in runs)
+
+
+def _cell(algorithm: str, env_id: str, rates: list[float]) -> list[dict]:
+    """Result records of one cell with these final rates (seeds 0, 1, ...)."""
+    return [{"algorithm": algorithm, "env_id": env_id, "seed": seed, "budget": 512, "final": {"rate": rate}}
+            for seed, rate in enumerate(rates)]
+
+
+def test_the_best_learner_has_the_highest_iqm_and_ties_go_to_more_seeds_then_the_mean() -> None:
+    cells = {("ppo", "NetCatch-v0"): _cell("ppo", "NetCatch-v0", [0.1, 0.9, 0.9, 0.9, 0.9]),
+             ("sac", "NetCatch-v0"): _cell("sac", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95]),
+             ("td3", "NetCatch-v0"): _cell("td3", "NetCatch-v0", [0.9, 0.9, 0.9]),
+             ("ppo", "NetCatchGoal-v0"): _cell("ppo", "NetCatchGoal-v0", [0.5, 0.6, 0.7, 0.8]),
+             ("random", "NetCatch-v0"): _cell("random", "NetCatch-v0", [1.0])}
+    best = report.best_learners(cells)
+    assert best == {"NetCatch-v0": "sac", "NetCatchGoal-v0": "ppo"}  # the reference's 100% does not count
+    matrix = report.matrix(cells).splitlines()
+    assert matrix[0] == "| algorithm | NetCatch-v0 | NetCatchGoal-v0 |"
+    sac_row = next(line for line in matrix if line.startswith("| sac |"))
+    assert sac_row.split(" | ")[1].startswith("**90.0%") and sac_row.endswith("| - |")
+    assert next(line for line in matrix if line.startswith("| *random* |")).startswith("| *random* | 100.0% | - |")
+    assert report.best_line(cells, "NetCatchGoal-v0").startswith("ppo: 65.0% [") and "over 4 seeds at 512" in \
+        report.best_line(cells, "NetCatchGoal-v0")
+    assert report.best_line(cells, "NetCatchPixels-v0") == "none trained yet"

@@ -12,11 +12,13 @@ from typing import Any
 
 import numpy as np
 
-from agents.baselines.grid import REFERENCES
+from agents.baselines.grid import ALGORITHMS, BUDGETS, REFERENCES
 from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
 from netgym.bench.results import read_results
 
 Cells = dict[tuple[str, str], list[dict[str, Any]]]
+PANELS_A_ROW = 4
+"""Columns of the figure's grid of panels (one an id, then the performance profile)."""
 
 
 def load_cells(out: Path) -> Cells:
@@ -67,6 +69,83 @@ def table(cells: Cells) -> str:
     return "\n".join(lines)
 
 
+def learners(cells: Cells) -> list[str]:
+    """The algorithms of ``cells`` that learn (references left out), in the grid's order."""
+    return [algo for algo in ALGORITHMS if any(a == algo for a, _ in cells)]
+
+
+def table_ids(cells: Cells) -> list[str]:
+    """The env ids of ``cells`` that some learner ran on, in the grid's order."""
+    return [env_id for env_id in BUDGETS if any(e == env_id and a not in REFERENCES for a, e in cells)]
+
+
+def matrix(cells: Cells) -> str:
+    """The markdown table a reader looks at first: one row per algorithm, one column per id, each
+    cell the IQM capture rate over seeds with its 95% interval and the number of seeds (the best
+    of each id in bold); then the references' rates (one run each: they do not learn)."""
+    ids = table_ids(cells)
+    best = best_learners(cells)
+    lines = ["| algorithm | " + " | ".join(ids) + " |", "|---|" + "---:|" * len(ids)]
+    for algo in learners(cells):
+        row = []
+        for env_id in ids:
+            records = cells.get((algo, env_id))
+            text = f"{_interval(_rates(records))} (n={len(records)})" if records else "-"
+            row.append(f"**{text}**" if best.get(env_id) == algo else text)
+        lines.append(f"| {algo} | " + " | ".join(row) + " |")
+    for reference in REFERENCES:
+        rates = [cells.get((reference, env_id)) for env_id in ids]
+        lines.append(f"| *{reference}* | " + " | ".join(f"{100 * _rates(r)[0]:.1f}%" if r else "-" for r in rates)
+                     + " |")
+    return "\n".join(lines)
+
+
+def best_learners(cells: Cells) -> dict[str, str]:
+    """Per env id, the learner with the highest IQM capture rate over its seeds (ties: more seeds,
+    then the higher mean)."""
+    scored = sorted((iqm(_rates(records)), len(records), float(np.mean(_rates(records))), algo, env_id)
+                    for (algo, env_id), records in cells.items() if algo not in REFERENCES)
+    return {env_id: algo for *_, algo, env_id in scored}
+
+
+def best_line(cells: Cells, env_id: str) -> str:
+    """One sentence naming ``env_id``'s best learner: its IQM capture rate, interval, seeds and
+    budget; or that no learner has run on it."""
+    algo = best_learners(cells).get(env_id)
+    if algo is None:
+        return "none trained yet"
+    records = cells[algo, env_id]
+    return (f"{algo}: {_interval(_rates(records))} IQM over {len(records)} seeds at "
+            f"{records[0]['budget']:,} steps")
+
+
+def protocol(cells: Cells) -> str:
+    """The protocol as the result files record it: per id the budget, the learners' seeds and the
+    held-out evaluation; then the runs' machines, package versions and the compute they cost."""
+    ids = table_ids(cells)
+    lines = ["| env id | budget (env steps) | seeds a learner | final evaluation (deterministic) | "
+             "learning curve |", "|---|---:|---:|---|---|"]
+    for env_id in ids:
+        runs = [records for (algo, e), records in cells.items() if e == env_id and algo not in REFERENCES]
+        first = runs[0][0]
+        fewest, most = min(len(records) for records in runs), max(len(records) for records in runs)
+        lines.append(f"| {env_id} | {first['budget']:,} | {most if fewest == most else f'{fewest}-{most}'} | "
+                     f"{first['final']['episodes']} episodes seeded from {first['final']['seed']} | "
+                     f"{len(first['curve']['points'])} points, {first['curve']['episodes']} episodes each |")
+    records = [record for runs in cells.values() for record in runs]
+    versions = {name: sorted({str(r["versions"].get(name)) for r in records})
+                for name in ("stable-baselines3", "sb3-contrib", "torch", "gymnasium", "numba")}
+    started = sorted(r["started"] for r in records)
+    machines = sorted({r["machine"] for r in records})
+    lines += ["", f"{len(records)} runs ({sum(len(r) for a, r in cells.items() if a[0] not in REFERENCES)} "
+              f"learning), one process and one torch thread each, CPU only, on {' / '.join(machines)}; started "
+              f"{started[0][:16].replace('T', ' ')} to {started[-1][:16].replace('T', ' ')} UTC. "
+              f"Compute: {sum(r['cpu_s'] for r in records) / 3600:.1f} CPU hours, "
+              f"{sum(r['wall_s'] for r in records) / 3600:.1f} hours of runs' wall-clock. Versions: "
+              + ", ".join(f"{name} {' / '.join(found)}" for name, found in versions.items()) + "."]
+    return "\n".join(lines)
+
+
 def _curve(records: list[dict[str, Any]]) -> tuple[np.ndarray, np.ndarray]:
     """The seeds' curves on the first seed's evaluation steps: steps, rates (seeds x steps)."""
     steps = np.array([point[0] for point in records[0]["curve"]["points"]])
@@ -83,8 +162,12 @@ def plot(cells: Cells, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     ids = sorted({env_id for algo, env_id in cells if algo not in REFERENCES})
-    fig, axes = plt.subplots(1, len(ids) + 1, figsize=(4.0 * (len(ids) + 1), 3.6), squeeze=False)
-    for ax, env_id in zip(axes[0], ids):
+    columns = min(PANELS_A_ROW, len(ids) + 1)
+    rows = -(-(len(ids) + 1) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.0 * columns, 3.6 * rows), squeeze=False)
+    panels = list(axes.flat)
+    colours = {algo: f"C{k}" for k, algo in enumerate(ALGORITHMS)}
+    for ax, env_id in zip(panels, ids):
         for (algo, cell_id), records in sorted(cells.items()):
             if cell_id != env_id:
                 continue
@@ -94,18 +177,21 @@ def plot(cells: Cells, path: Path) -> None:
                 continue
             steps, rates = _curve(records)
             bands = np.array([bootstrap_ci(rates[:, k], reps=500) for k in range(len(steps))])
-            line, = ax.plot(steps, 100 * iqm(rates, axis=0), label=f"{algo} (n={len(records)})")
-            ax.fill_between(steps, 100 * bands[:, 0], 100 * bands[:, 1], color=line.get_color(), alpha=0.2)
+            ax.plot(steps, 100 * iqm(rates, axis=0), color=colours[algo], label=f"{algo} (n={len(records)})")
+            ax.fill_between(steps, 100 * bands[:, 0], 100 * bands[:, 1], color=colours[algo], alpha=0.2)
         ax.set(title=env_id, xlabel="environment steps", ylim=(0, 105))
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="lower right")
-    axes[0][0].set_ylabel("capture rate (%), IQM over seeds")
-    profile = axes[0][-1]
+    for row in axes:
+        row[0].set_ylabel("capture rate (%), IQM over seeds")
+    profile = panels[len(ids)]
+    for unused in panels[len(ids) + 1:]:
+        unused.set_axis_off()
     thresholds = np.linspace(0.0, 1.05, 106)
     scaled = normalised(cells)
     for algo in sorted({algo for algo, _ in scaled}):
         scores = np.concatenate([s for (a, _), s in sorted(scaled.items()) if a == algo])
-        profile.plot(thresholds, performance_profile(scores, thresholds), label=algo)
+        profile.plot(thresholds, performance_profile(scores, thresholds), color=colours[algo], label=algo)
     profile.set(title="performance profile", xlabel="normalised score τ", ylabel="fraction of runs with score > τ",
                 ylim=(0, 1.05))
     profile.grid(alpha=0.3)
@@ -121,5 +207,6 @@ def write_report(out: Path) -> Path:
     cells = load_cells(out)
     plot(cells, out / "curves.png")
     report = out / "report.md"
-    report.write_text(f"# Baselines\n\n{table(cells)}\n\n![learning curves and performance profile](curves.png)\n")
+    report.write_text(f"# Baselines\n\n{matrix(cells)}\n\n![learning curves and performance profile](curves.png)\n\n"
+                      f"{table(cells)}\n\n## Protocol\n\n{protocol(cells)}\n")
     return report

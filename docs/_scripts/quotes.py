@@ -25,12 +25,15 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
+from agents.baselines import report as baselines  # noqa: E402
 from netgym.bench import convergence_table, roofline, speed_table  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
 
 REPORT = "docs/BENCHMARKS.md"
 TRAINING_CURVE = ROOT / "docs" / "figures" / "ppo_curve.csv"
 SHIPPED_PPO = "PPO ppo_netcatch.zip"
+BASELINES = RESULTS / "baselines"
+"""The baselines' result files (``scripts/baselines.py --out docs/results/baselines``)."""
 
 
 def _only_row(rows: list[dict], source: str, what: str, match: Callable[[dict], bool]) -> dict:
@@ -228,6 +231,9 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "variant-speed": lambda: speed_table.block(RESULTS / "variant_speed.json"),
     "contact-convergence": lambda: convergence_table.block(RESULTS / "contact_convergence.json"),
     "variants-summary": variants_summary,
+    "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
+    "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),
+    "baselines-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES)),
     "learning-curve": lambda: learning_curve("ppo_curve"),
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
     "learning-curve-windy-stack5": lambda: learning_curve("ppo_windy_stack5_curve",
@@ -235,7 +241,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
 }
 """How each quoted block is made."""
 
-FILES = ("README.md", "docs/AGENTS.md", "docs/index.md", "docs/getting-started.md", "docs/BENCHMARKS.md")
+FILES = ("README.md", "docs/AGENTS.md", "docs/index.md", "docs/getting-started.md", "docs/BENCHMARKS.md",
+         "docs/baselines.md")
 """The files whose quoted blocks are generated."""
 
 _BLOCK = re.compile(r"(<!-- quote:([\w-]+) -->\n)(.*?)(<!-- /quote:\2 -->)", re.S)
