@@ -8,7 +8,8 @@ method on the flight through air (the wind it is given; none by default) until t
 crosses the opening's plane at the centre. No learning; on NetCatch-v0 its capture rate is the
 reference ceiling for learned agents.
 
-- :class:`InformedOracle` is told each episode's hidden wind (the ceiling of the windy variant);
+- :class:`InformedOracle` is told each episode's hidden wind and draws (the ceiling of the
+  variants that hide them);
 - :class:`AdaptiveOracle` is not, and corrects its aim point from the feedback of its throws.
 """
 
@@ -166,15 +167,18 @@ class BallisticOracle:
 
 
 class InformedOracle(BallisticOracle):
-    """The ballistic oracle told each episode's wind by the env (``env.unwrapped``): the
-    ceiling of the windy variant."""
+    """The ballistic oracle told each episode's hidden draws by the env (``env.unwrapped``): the
+    wind and the scene the episode runs (the ball's mass and drag); the ceiling of the variants
+    that hide them."""
 
     def __init__(self, env: Any, max_elevation: float = 75.0) -> None:
         super().__init__(env.unwrapped.scene, max_elevation)
         self.env = env.unwrapped
 
     def act(self, row: np.ndarray) -> np.ndarray:
-        """Aim with the wind the env blows this episode."""
+        """Aim through the air, ball and wind of this episode."""
+        self.scene = self.env.scene
+        self.drag = self.env.sim.model.ball_drag
         self.wind = self.env.sim.model.wind.copy()
         return super().act(row)
 

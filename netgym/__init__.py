@@ -48,13 +48,21 @@ ENVIRONMENTS: dict[str, Registration] = {
                        "springs.structural.kd": (20.0, 80.0)}}, 2.9,
         "domain randomisation: ball mass, ball/net restitution and friction, net stiffness and damping per episode",
         "as NetCatch-v0 (the draws are in `info`, never observed)"),
+    "NetCatchRandomized-v1": Registration(
+        {"balls_per_episode": 5, "overrides": {"air.density": 1.2}, "feedback": True,
+         "randomize": {"ball.mass": (0.5, 2.0), "air.drag_coefficient": (0.0, 1.0),
+                       "contact.ball_net.restitution": (0.2, 0.7), "contact.ball_net.friction": (0.1, 0.6),
+                       "springs.structural.ks": (1000.0, 3000.0), "springs.structural.kd": (20.0, 80.0)}}, 4.5,
+        "identify the flight within an episode: the ball's mass and drag coefficient (and the net's physics) "
+        "drawn per episode and hidden, 5 throws",
+        "adds feedback of the previous throw (caught, where it crossed the opening's plane)"),
     "NetCatchPixels-v0": Registration(
         {"size": 84}, 2.9, "NetCatch-v0 from pixels", "an 84 x 84 RGB image from the thrower's release point",
         entry_point="netgym.wrappers:thrower_view_env"),
 }
 """Every registered id. The thresholds are 97% of an episode's balls caught on the sparse reward,
 90% for the windy and the noisy variants (what an oracle that cannot know the wind, or undo the
-noise, comes near)."""
+noise, comes near) and for NetCatchRandomized-v1."""
 
 
 def balls_per_episode(env_id: str) -> int:

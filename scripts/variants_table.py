@@ -2,7 +2,7 @@
 intervals, as a markdown table (docs/AGENTS.md).
 
 Agents: the ballistic oracle (knows the drag of the air, not the wind), the informed oracle
-(also told each episode's wind: the ceiling), the adaptive oracle (corrects its aim from the
+(also told each episode's wind and scene draws: the ceiling), the adaptive oracle (corrects its aim from the
 feedback of its own throws), the constant middle action, random actions, PPO trained on the
 windy variant (``python scripts/train_ppo.py --env NetCatchWindy-v0 --minutes 20``) and PPO
 trained on the episode's last five observations stacked (``--frame-stack 5``). Episodes are
@@ -11,6 +11,8 @@ seeded 10000, 10001, ...; each agent meets the same ones. Two processes share th
 Usage::
 
     python scripts/variants_table.py --episodes 1000 --results docs/results/variants.json
+    python scripts/variants_table.py --variants NetCatchRandomized-v1 --episodes 1000 \
+        --results docs/results/variants_randomized_v1.json
     python scripts/variants_table.py --quick            # a few episodes, for smoke tests
 """
 
@@ -35,7 +37,7 @@ from netgym.bench.results import write_results
 
 AGENTS = {
     "ballistic oracle": lambda env: BallisticOracle(env.scene),
-    "informed oracle (knows the wind)": InformedOracle,
+    "informed oracle": InformedOracle,
     "adaptive oracle (uses the feedback)": lambda env: AdaptiveOracle(env.scene),
     "constant action (10 m/s, 50 degrees, straight)": lambda env: ConstantAction(),
     "random": lambda env: RandomAgent(0),
@@ -45,14 +47,17 @@ AGENTS = {
 }
 VARIANTS = {"NetCatchWindy-v0": list(AGENTS),  # the windy PPO model was trained on NetCatchWindy-v0
             "NetCatchNoisy-v0": ["ballistic oracle", "random"],
-            "NetCatchRandomized-v0": ["ballistic oracle", "random"]}
-WIND_REMARKS = {"ballistic oracle": "blind to the wind"}
-"""What an agent's label adds on a variant with wind."""
+            "NetCatchRandomized-v0": ["ballistic oracle", "random"],
+            "NetCatchRandomized-v1": ["ballistic oracle", "informed oracle", "adaptive oracle (uses the feedback)",
+                                      "random"]}
+REMARKS = {"NetCatchWindy-v0": {"ballistic oracle": "blind to the wind", "informed oracle": "knows the wind"},
+           "NetCatchRandomized-v1": {"ballistic oracle": "blind to the draws", "informed oracle": "knows the draws"}}
+"""What an agent's label adds on the variants that hide what moves the aim (a wind, the ball)."""
 
 
 def label(variant: str, agent: str) -> str:
-    """``agent``'s label in ``variant``'s rows: with its remark on the wind where the variant has wind."""
-    remark = WIND_REMARKS.get(agent) if gym.spec(variant).kwargs.get("wind") is not None else None
+    """``agent``'s label in ``variant``'s rows: with its remark on what the variant hides."""
+    remark = REMARKS.get(variant, {}).get(agent)
     return agent if remark is None else f"{agent} ({remark})"
 
 
@@ -80,9 +85,11 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--quick", action="store_true", help="2 episodes per agent")
     parser.add_argument("--results", type=Path, help="also write the rows to this result file (JSON)")
+    parser.add_argument("--variants", nargs="+", choices=list(VARIANTS), default=list(VARIANTS),
+                        help="the variants to evaluate (default: all)")
     args = parser.parse_args()
     episodes = 2 if args.quick else args.episodes
-    jobs = [(variant, agent, episodes) for variant, agents in VARIANTS.items() for agent in agents]
+    jobs = [(variant, agent, episodes) for variant in args.variants for agent in VARIANTS[variant]]
     compile_kernels("NetCatchWindy-v0")  # before the workers start
     with ProcessPoolExecutor(args.workers) as pool:
         rows = list(pool.map(_row, jobs))

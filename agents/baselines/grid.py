@@ -2,8 +2,9 @@
 
 An algorithm runs on the ids its hyperparameter file (``agents/hyperparams/NAME.yml``, rl_zoo3's
 format) has settings for; the file's ``n_timesteps`` is ignored, every algorithm gets the id's
-:data:`BUDGETS`. Besides the learners, each id has two reference runs, :data:`REFERENCES`: the
-random policy and the informed oracle, the 0 and 1 of the normalised score.
+:data:`BUDGETS`. Besides the learners, each id has three reference runs, :data:`REFERENCES`: the
+random policy and the informed oracle (the 0 and 1 of the normalised score), and the blind oracle
+between them.
 """
 
 from __future__ import annotations
@@ -23,9 +24,11 @@ ALGORITHMS: dict[str, tuple[str, str]] = {
     "ppo_cnn": ("stable_baselines3", "PPO"),
 }
 """Algorithm name (its yml's name) -> (module, class) of its implementation."""
-REFERENCES = ("random", "oracle")
-"""The runs that learn nothing: uniform random actions, and the informed oracle (the ballistic
-oracle told each episode's wind; on pixels it acts on the same episodes' vector observations)."""
+REFERENCES = ("random", "blind", "oracle")
+"""The runs that learn nothing: uniform random actions, the ballistic oracle blind to what an
+episode hides (its wind, its ball), and the informed oracle (told them); on pixels they act on the
+same episodes' vector observations. The gap from blind to informed is what learning within an
+episode can close."""
 BUDGETS: dict[str, int] = {
     "NetCatch-v0": 20_480,
     "NetCatchGoal-v0": 20_480,
@@ -34,6 +37,7 @@ BUDGETS: dict[str, int] = {
     "NetCatchPixels-v0": 20_480,
     "NetCatchLongEpisode-v0": 20_480,
     "NetCatchRandomized-v0": 20_480,
+    "NetCatchRandomized-v1": 30_720,
 }
 """Environment steps (throws) of every learning run on the id. Multiples of 512, so that PPO's
 rollouts (8 envs x 64 steps) end on the budget. On NetCatch-v0 PPO passed 95% at 12,288-16,384
@@ -42,9 +46,10 @@ steps (docs/AGENTS.md), SAC, TD3 and TQC at 2,000-4,000; on the windy id PPO nee
 273 steps/s, TD3 150, SAC 103, TQC 89; NetCatchWindy-v0 PPO 166, SAC 91; NetCatchPixels-v0
 PPO-CNN 47. Taking a catching policy's later steps at 60% of those rates, the table of 5 seeds
 is ~27,000 CPU seconds, ~3.8 hours on 2 cores (the limit: 6). NetCatchLongEpisode-v0 asks the
-same aim as NetCatch-v0 into a fuller net, so it gets NetCatch-v0's budget."""
+same aim as NetCatch-v0 into a fuller net, so it gets NetCatch-v0's budget; NetCatchRandomized-v1,
+5 throws with feedback like the windy id, gets the windy id's."""
 TABLE_IDS = ("NetCatch-v0", "NetCatchGoal-v0", "NetCatchNoisy-v0", "NetCatchWindy-v0", "NetCatchPixels-v0",
-             "NetCatchLongEpisode-v0")
+             "NetCatchLongEpisode-v0", "NetCatchRandomized-v1")
 """The ids of the table (the default)."""
 SEEDS = (0, 1, 2, 3, 4)
 FINAL_EPISODES, FINAL_SEED = 100, 10_000

@@ -18,6 +18,7 @@ from netgym.bench.results import read_results
 
 Cells = dict[tuple[str, str], list[dict[str, Any]]]
 PANELS_A_ROW = 4
+REFERENCE_COLOURS = {"random": "gray", "blind": "black", "oracle": "green"}
 """Columns of the figure's grid of panels (one an id, then the performance profile)."""
 
 
@@ -172,7 +173,7 @@ def plot(cells: Cells, path: Path) -> None:
             if cell_id != env_id:
                 continue
             if algo in REFERENCES:
-                ax.axhline(100 * _rates(records)[0], linestyle=":", color="gray" if algo == "random" else "green",
+                ax.axhline(100 * _rates(records)[0], linestyle=":", color=REFERENCE_COLOURS[algo],
                            label=algo)
                 continue
             steps, rates = _curve(records)

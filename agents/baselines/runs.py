@@ -22,7 +22,7 @@ from agents.baselines.grid import ALGORITHMS, CURVE_POINTS, FINAL_SEED, Run
 from agents.evaluation import CaptureRate, evaluate
 from agents.hyperparams import action_noise, algorithm_kwargs, load, yml
 from agents.model_env import record_env, vector_counterpart
-from agents.oracle import InformedOracle
+from agents.oracle import BallisticOracle, InformedOracle
 from agents.random_agent import RandomAgent
 from agents.training import TRAINER_THREADS, CaptureCurve, torch_threads
 
@@ -63,7 +63,8 @@ def _final(rate: CaptureRate, episodes: int) -> dict[str, Any]:
 
 def _reference(run: Run) -> dict[str, Any]:
     """A reference policy on the held-out episodes (of the vector counterpart, for pixels)."""
-    policies = {"random": RandomAgent(run.seed), "oracle": InformedOracle}
+    policies = {"random": RandomAgent(run.seed), "blind": lambda env: BallisticOracle(env.scene),
+                "oracle": InformedOracle}
     env_id, env_kwargs = vector_counterpart(run.env_id)
     rate = evaluate(policies[run.algorithm], run.final_episodes, seed=FINAL_SEED, env_id=env_id, **env_kwargs)
     return {"env_steps": 0, "hyperparams": {}, "curve": {"episodes": 0, "points": []},

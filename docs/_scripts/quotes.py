@@ -75,16 +75,24 @@ def capture_rates() -> str:
     return "\n".join(lines)
 
 
+VARIANT_SOURCES = ("variants.json", "variants_randomized_v1.json")
+"""The variants' result files, each written by ``scripts/variants_table.py`` (the second for the
+variant added after the first was measured)."""
+
+
 def variants() -> str:
     """The capture rates of the reference agents on the variants, with their intervals and speed."""
-    record = read_results(RESULTS / "variants.json")
-    figures = record["figures"]
-    lines = [f"| variant | agent | capture rate | 95% CI | throws caught ({figures['episodes']} episodes) | "
+    records = [read_results(RESULTS / name) for name in VARIANT_SOURCES]
+    episodes = {record["figures"]["episodes"] for record in records}
+    if len(episodes) != 1:
+        raise ValueError(f"docs/results/{VARIANT_SOURCES} count different episodes {sorted(episodes)}")
+    lines = [f"| variant | agent | capture rate | 95% CI | throws caught ({episodes.pop()} episodes) | "
              "throws/s (one process) |", "|---|---|---:|---:|---:|---:|"]
     lines += [f"| {row['variant']} | {row['agent']} | {_rate(row)} | {_interval(row)} | "
-              f"{row['captured']}/{row['throws']} | {row['throws_per_s']:.1f} |" for row in figures["rows"]]
-    lines.append(f"\nSource: `docs/results/variants.json`, written by `{record['command']}` "
-                 f"({record['written']}, {record['machine']}).")
+              f"{row['captured']}/{row['throws']} | {row['throws_per_s']:.1f} |"
+              for record in records for row in record["figures"]["rows"]]
+    lines += [f"\nSource: `docs/results/{name}`, written by `{record['command']}` "
+              f"({record['written']}, {record['machine']})." for name, record in zip(VARIANT_SOURCES, records)]
     return "\n".join(lines)
 
 
@@ -120,14 +128,14 @@ def learning_curve(name: str, checkpoints: tuple[int, ...] = (0, 4096, 8192, 122
 def variants_summary() -> str:
     """What the variants' table says, in points of capture rate: the gap learning must close on the
     windy variant and how much of it each learner closes, and what the noise costs the oracle."""
-    rows = read_results(RESULTS / "variants.json")["figures"]["rows"]
+    rows = [row for name in VARIANT_SOURCES for row in read_results(RESULTS / name)["figures"]["rows"]]
 
     def rate(variant: str, agent: str) -> float:
         row = _only_row(rows, "variants.json", f"{variant}, {agent}",
                         lambda r: r["variant"] == variant and r["agent"].startswith(agent))
         return 100 * row["captured"] / row["throws"]
 
-    windy, noisy = "NetCatchWindy-v0", "NetCatchNoisy-v0"
+    windy, noisy, randomized = "NetCatchWindy-v0", "NetCatchNoisy-v0", "NetCatchRandomized-v1"
     blind, informed = rate(windy, "ballistic oracle"), rate(windy, "informed oracle")
     adaptive, mlp, stacked = rate(windy, "adaptive oracle"), rate(windy, "PPO, MLP with"), rate(windy, "PPO, MLP on")
     oracle = read_results(RESULTS / "agents.json")["figures"]["policies"]["oracle"]
@@ -139,11 +147,16 @@ def variants_summary() -> str:
         f"{adaptive - blind:+.1f}.",
         f"- {noisy}: the launch noise costs the ballistic oracle {clean - rate(noisy, 'ballistic oracle'):.1f} "
         "points against NetCatch-v0 without noise. No policy can undo noise drawn after its action; one "
-        "can only aim where the noise costs least (no agent trained on it yet).",
+        "can only aim where the noise costs least ([baselines](baselines.md): what learners reach).",
         f"- NetCatchRandomized-v0: the ballistic oracle catches {rate('NetCatchRandomized-v0', 'ballistic oracle'):.1f}%: "
         "ball mass, restitution, friction and the net's stiffness and damping change how the net answers, not the "
         "flight, so the variant tests robustness of what happens at the net (rim hits, loaded nets), not aim. "
-        "Each reset settles a new net, hence its lower throughput."])
+        "Each reset settles a new net, hence its lower throughput.",
+        f"- NetCatchRandomized-v1 draws the ball's drag coefficient and mass too, hidden: blind to the draws the "
+        f"ballistic oracle catches {rate(randomized, 'ballistic oracle'):.1f}%, told them "
+        f"{rate(randomized, 'informed oracle'):.1f}%; the adaptive oracle, whose correction of a steady drift fits "
+        f"the wind, {rate(randomized, 'adaptive oracle'):.1f}%: a wrong drag misses by an amount that depends on "
+        "the throw, so the feedback must be used to identify the ball, not to shift the aim."])
 
 
 def rllib_throughput() -> str:

@@ -142,6 +142,12 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
       ``"time_limit"`` with misses); the dynamics are unchanged.
     - ``NetCatchWindy-v0``, ``NetCatchNoisy-v0``, ``NetCatchRandomized-v0`` and
       ``NetCatchPixels-v0``: new in netgym 0.1.
+    - ``NetCatchRandomized-v1`` (netgym 0.1): v0 drew only what changes how the net answers, so
+      an oracle blind to the draws caught every throw and it separated no algorithms.
+      v1 also draws the ball's drag coefficient (0-1, in air of 1.2 kg/m^3) beside its mass, so
+      the flight, and the aim, change per episode; 5 throws with the previous throw's feedback,
+      so that an agent can identify them. v0 stays registered (``gymnasium.make`` says that v1
+      exists).
     """
 
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list", "replay_list"], "render_fps": 30}
