@@ -26,10 +26,12 @@ SAVED_AS = "netgym_env"
 
 @dataclass(frozen=True)
 class ModelEnv:
-    """A registered env id and the number of its observations a model sees at once."""
+    """A registered env id, the number of its observations a model sees at once, and the
+    algorithm that trained the model (its class name: PPO, SAC, TD3, TQC)."""
 
     env_id: str
     frame_stack: int = 1
+    algorithm: str = "PPO"
 
     def __str__(self) -> str:
         return self.env_id + (f" with {self.frame_stack} observations stacked" if self.frame_stack > 1 else "")
@@ -40,8 +42,8 @@ class EnvMismatchError(InvalidArgumentError):
 
 
 def record_env(model: Any, env_id: str, frame_stack: int = 1) -> None:
-    """Record on ``model`` the env it trains on, so that ``model.save`` keeps it."""
-    setattr(model, SAVED_AS, asdict(ModelEnv(env_id, frame_stack)))
+    """Record on ``model`` the env it trains on and its algorithm, so that ``model.save`` keeps them."""
+    setattr(model, SAVED_AS, asdict(ModelEnv(env_id, frame_stack, type(model).__name__)))
 
 
 def saved_env(model: Any) -> ModelEnv | None:

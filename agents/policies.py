@@ -3,6 +3,9 @@ or ``random``."""
 
 from __future__ import annotations
 
+import importlib
+import json
+import zipfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -10,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from agents.evaluation import Policy
-from agents.model_env import DEFAULT_ENV, check_registered, model_env, observation_space
+from agents.model_env import DEFAULT_ENV, SAVED_AS, check_registered, model_env, observation_space
 from agents.oracle import BallisticOracle
 from agents.random_agent import RandomAgent
 from agents.rllib_policy import RLlibPolicy, is_rllib_checkpoint
@@ -22,34 +25,46 @@ PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.z
 PRETRAINED_WINDY_STACKED = Path(__file__).resolve().parent / "pretrained" / "ppo_windy_stack5.zip"  # the same, 5 frames
 
 
-SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG")
+SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", "TQC")
+"""The algorithms a saved model may come from: Stable-Baselines3's, and sb3-contrib's TQC."""
 TRAIN_EXTRA = 'Stable-Baselines3 and torch: pip install torch==2.13.0 && pip install -e ".[train]"'
 """What a saved model or training needs beyond the environment, and how to install it."""
 
 
-def load_policy(name: str | Path, scene: str = "basket", algorithm: str = "PPO") -> Policy:
+def saved_algorithm(path: str | Path) -> str:
+    """The algorithm (one of SB3_ALGORITHMS) a model zip was saved by: the one its netgym record
+    names (:func:`~agents.model_env.record_env`), else PPO (models saved before it named one)."""
+    with zipfile.ZipFile(path) as archive:
+        record = json.loads(archive.read("data")).get(SAVED_AS, {})
+    return record.get("algorithm", "PPO")
+
+
+def load_policy(name: str | Path, scene: str = "basket", algorithm: str | None = None) -> Policy:
     """``"oracle"``, ``"random"``, the folder of an RLlib checkpoint (``scripts/train_rllib.py``)
-    or the path of a model saved by Stable-Baselines3's ``algorithm`` (one of SB3_ALGORITHMS)."""
+    or the path of a model saved by ``algorithm`` (one of SB3_ALGORITHMS; by default the one the
+    model's zip names, :func:`saved_algorithm`)."""
     if str(name) == "oracle":
         return BallisticOracle.from_scene(scene)
     if str(name) == "random":
         return RandomAgent(0)
     if is_rllib_checkpoint(name):
         return RLlibPolicy(name)
-    if algorithm.upper() not in SB3_ALGORITHMS:
+    if algorithm is not None and algorithm.upper() not in SB3_ALGORITHMS:
         raise InvalidArgumentError(f"algorithm = {algorithm!r} is not one of {list(SB3_ALGORITHMS)}")
     if not Path(name).is_file():
         raise FileNotFoundError(f"policy {str(name)!r} is neither 'oracle', 'random', a saved model file nor an RLlib "
                                 f"checkpoint folder")
+    algorithm = (algorithm or saved_algorithm(name)).upper()
     try:
-        import stable_baselines3
+        package = importlib.import_module("sb3_contrib" if algorithm == "TQC" else "stable_baselines3")
     except ImportError as missing:
-        raise ImportError(f"loading the saved model {str(name)!r} needs {TRAIN_EXTRA}") from missing
-    return getattr(stable_baselines3, algorithm.upper()).load(str(name), device="cpu")
+        extra = 'sb3-contrib: pip install -e ".[baselines]"' if algorithm == "TQC" else TRAIN_EXTRA
+        raise ImportError(f"loading the saved model {str(name)!r} needs {extra}") from missing
+    return getattr(package, algorithm).load(str(name), device="cpu")
 
 
 def policy_in_env(name: str | Path, env_id: str | None = None,
-                  algorithm: str = "PPO") -> tuple[str, Policy | Callable[[NetCatchEnv], Policy]]:
+                  algorithm: str | None = None) -> tuple[str, Policy | Callable[[NetCatchEnv], Policy]]:
     """The registered env to act in and ``name``'s policy for one env of it (a policy, or a
     function of the env that makes one, as :func:`~agents.evaluation.evaluate` takes).
     ``env_id`` defaults to the one a saved model was trained on (see

@@ -33,7 +33,8 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=100)
     parser.add_argument("--seed", type=int, default=10_000, help="episode i uses seed + i")
     parser.add_argument("--scene", help="scene in place of the env's own (e.g. goal)")
-    parser.add_argument("--algorithm", default="PPO", choices=SB3_ALGORITHMS, help="the SB3 algorithm of a saved model")
+    parser.add_argument("--algorithm", choices=SB3_ALGORITHMS,
+                        help="the algorithm of a saved model (default: the one it was saved with, else PPO)")
     args = parser.parse_args()
     try:
         env_id, policy = policy_in_env(args.policy, args.env, args.algorithm)

@@ -31,7 +31,7 @@ from netgym.render import caption_frame
 from netgym.video import FORMATS, EpisodeFilm
 
 
-def record(scene: str, seed: int, throws: int, policy: str, algorithm: str = "PPO", settling: bool = True,
+def record(scene: str, seed: int, throws: int, policy: str, algorithm: str | None = None, settling: bool = True,
            render_mode: str = "rgb_array_list") -> EpisodeFilm:
     """The film of one episode of ``throws`` throws by ``policy`` (``oracle``, ``random`` or a
     saved model): images (``render_mode="rgb_array_list"``) or 3D snapshots (``"replay_list"``)."""
@@ -58,7 +58,8 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--throws", type=int, default=3)
     parser.add_argument("--policy", default="oracle", help="oracle, random or the path of a saved SB3 model (.zip)")
-    parser.add_argument("--algorithm", default="PPO", choices=SB3_ALGORITHMS, help="the SB3 algorithm of a saved model")
+    parser.add_argument("--algorithm", choices=SB3_ALGORITHMS,
+                        help="the algorithm of a saved model (default: the one it was saved with, else PPO)")
     parser.add_argument("--settling", action=argparse.BooleanOptionalAction, default=True,
                         help="film the net settling between throws (default: yes)")
     parser.add_argument("--output", type=Path, default=Path("throw.mp4"), help=" or ".join(FORMATS))

@@ -23,6 +23,7 @@ from agents.baselines.grid import ALGORITHMS, BUDGETS, REFERENCES, grid
 from agents.baselines.runner import done, missing
 from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
 from agents.hyperparams import action_noise, algorithm_kwargs, env_ids, load, yml
+from agents.policies import policy_in_env, saved_algorithm
 from netgym.bench.results import read_results, write_results
 from netgym.errors import InvalidArgumentError
 
@@ -131,7 +132,7 @@ def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, mon
 
     failing, passing = grid(quick=True)[:2]
     outcomes = [(failing, ValueError("boom")), (passing, {"final": {"rate": 1.0}, "wall_s": 1.0})]
-    monkeypatch.setattr(runner, "_local", lambda runs, workers: iter(outcomes))
+    monkeypatch.setattr(runner, "_local", lambda runs, workers, models: iter(outcomes))
     lines: list[str] = []
     with pytest.raises(RuntimeError, match=failing.name):
         runner.run_missing([failing, passing], tmp_path, report=lines.append)
@@ -207,6 +208,11 @@ def test_quick_mode_runs_the_quick_grid_end_to_end(tmp_path: Path) -> None:
     report = (tmp_path / "report.md").read_text()
     assert all(f"| {run.algorithm} | {run.env_id} |" in report for run in runs)
     assert len(grid_module.QUICK_IDS) == len({run.env_id for run in runs})
+    for run in (run for run in runs if run.algorithm not in REFERENCES):  # each model loads with no other argument
+        model = tmp_path / "models" / f"{run.name}.zip"
+        assert saved_algorithm(model) == ALGORITHMS[run.algorithm][1]
+        env_id, policy = policy_in_env(model)
+        assert env_id == run.env_id and type(policy).__name__ == ALGORITHMS[run.algorithm][1]
 
 
 @pytest.mark.slow

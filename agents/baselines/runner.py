@@ -22,6 +22,9 @@ from netgym.bench.results import read_results, write_results
 from netgym.errors import InvalidArgumentError
 
 PR_SET_PDEATHSIG = 1
+MODELS = "models"
+"""The folder under the output folder where each learner's final model is saved
+(``models/ALGORITHM/ENV_ID/seed_K.zip``; not committed with the result files)."""
 
 
 def done(run: Run, out: Path) -> bool:
@@ -53,20 +56,21 @@ Outcome = tuple[Run, "dict[str, Any] | Exception"]
 """A run and its record, or the exception that ended it."""
 
 
-def _local(runs: list[Run], workers: int) -> Iterator[Outcome]:
+def _local(runs: list[Run], workers: int, models: Path) -> Iterator[Outcome]:
     """Each run's outcome as it ends, from ``workers`` processes started fresh (spawn) after the
-    kernels of the runs' ids are compiled once here."""
+    kernels of the runs' ids are compiled once here; the models are saved under ``models``."""
     _compile(list(dict.fromkeys(run.env_id for run in runs)))
     context = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(workers, mp_context=context, initializer=_die_with_parent) as pool:
-        futures = {pool.submit(execute, run): run for run in runs}
+        futures = {pool.submit(execute, run, models): run for run in runs}
         for future in as_completed(futures):
             yield futures[future], future.exception() or future.result()
 
 
-def _ray(runs: list[Run], address: str) -> Iterator[Outcome]:
+def _ray(runs: list[Run], address: str, models: Path) -> Iterator[Outcome]:
     """Each run's outcome as it ends, from Ray tasks (one CPU each) on the cluster at
-    ``address``; the kernels are compiled first on every node, one task each."""
+    ``address``; the kernels are compiled first on every node, one task each; the models are
+    saved under ``models`` on the node that trained them."""
     import ray
     from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
 
@@ -77,7 +81,7 @@ def _ray(runs: list[Run], address: str) -> Iterator[Outcome]:
     ray.get([warm.options(scheduling_strategy=NodeAffinitySchedulingStrategy(node, soft=False)).remote(ids)
              for node in nodes])
     task = ray.remote(num_cpus=1)(execute)
-    pending = {task.remote(run): run for run in runs}
+    pending = {task.remote(run, models): run for run in runs}
     while pending:
         ready, _ = ray.wait(list(pending), num_returns=1)
         run = pending.pop(ready[0])
@@ -90,7 +94,8 @@ def _ray(runs: list[Run], address: str) -> Iterator[Outcome]:
 def run_missing(runs: list[Run], out: Path, workers: int = 2, address: str | None = None,
                 report: Callable[[str], None] = functools.partial(print, flush=True)) -> list[Run]:
     """Run those of ``runs`` not done under ``out``, the costliest first, each result file
-    written as its run ends (``--out``'s layout: ``ALGORITHM/ENV_ID/seed_K.json``); ``report``
+    written as its run ends (``--out``'s layout: ``ALGORITHM/ENV_ID/seed_K.json``, the learners'
+    models under :data:`MODELS`); ``report``
     gets a line per run with the progress and the estimated time left. A run that fails is
     reported and the others go on; then RuntimeError names the failed runs. Returns the runs
     it ran."""
@@ -100,7 +105,8 @@ def run_missing(runs: list[Run], out: Path, workers: int = 2, address: str | Non
     if not todo:
         return []
     total, spent, start = sum(run.cost for run in todo), 0, time.perf_counter()
-    records = _ray(todo, address) if address else _local(todo, workers)
+    models = out / MODELS
+    records = _ray(todo, address, models) if address else _local(todo, workers, models)
     failed = []
     for k, (run, record) in enumerate(records, start=1):
         spent += run.cost

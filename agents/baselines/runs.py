@@ -43,14 +43,15 @@ def versions() -> dict[str, str | None]:
     return found
 
 
-def execute(run: Run) -> dict[str, Any]:
-    """Train and evaluate ``run`` on one torch thread; its record: the run's fields, versions,
-    machine, start time, wall and CPU seconds (the CPU's do not count time lost to other
+def execute(run: Run, models: Path | None = None) -> dict[str, Any]:
+    """Train and evaluate ``run`` on one torch thread, saving a learner's final model as
+    ``models/ALGORITHM/ENV_ID/seed_K.zip`` if ``models`` is given; its record: the run's fields,
+    versions, machine, start time, wall and CPU seconds (the CPU's do not count time lost to other
     processes), steps trained, hyperparameters, learning curve (``[steps, capture rate,
     training seconds]`` points) and the final evaluation."""
     started, clock, cpu = datetime.datetime.now(datetime.timezone.utc), time.perf_counter(), time.process_time()
     with torch_threads(TRAINER_THREADS):
-        trained = _reference(run) if run.budget == 0 else _learner(run)
+        trained = _reference(run) if run.budget == 0 else _learner(run, models)
     return {**dataclasses.asdict(run), "versions": versions(), "machine": f"{platform.machine()}, {platform.node()}",
             "started": started.isoformat(timespec="seconds"), "wall_s": time.perf_counter() - clock,
             "cpu_s": time.process_time() - cpu, **trained}
@@ -71,8 +72,9 @@ def _reference(run: Run) -> dict[str, Any]:
             "final": {**_final(rate, run.final_episodes), "evaluated_on": env_id}}
 
 
-def _learner(run: Run) -> dict[str, Any]:
-    """Train the algorithm with its yml's settings for the id, recording the curve; evaluate."""
+def _learner(run: Run, models: Path | None) -> dict[str, Any]:
+    """Train the algorithm with its yml's settings for the id, recording the curve; save the model
+    under ``models`` (if given); evaluate."""
     settings = load(yml(run.algorithm), run.env_id)
     module, name = ALGORITHMS[run.algorithm]
     algorithm = getattr(importlib.import_module(module), name)
@@ -87,6 +89,8 @@ def _learner(run: Run) -> dict[str, Any]:
                          env_id=run.env_id, env_kwargs=env_kwargs)
     model.learn(run.budget, callback=curve)
     env.close()
+    if models is not None:
+        model.save(models / f"{run.name}.zip")
     rate = evaluate(model, run.final_episodes, seed=FINAL_SEED, env_id=run.env_id, **env_kwargs)
     return {"env_steps": model.num_timesteps, "hyperparams": settings, "train_s": curve.points[-1][2],
             "curve": {"episodes": run.curve_episodes, "seed": curve.seed, "points": curve.points},
