@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import inspect
 import sys
+import warnings
 from pathlib import Path
 
 import gymnasium as gym
@@ -66,7 +67,9 @@ def env_card(env_id: str) -> str:
     """The markdown page of ``env_id``: a header table, the poster and Gymnasium's eight sections,
     the spaces and what the id varies read from the env it makes."""
     entry, spec = netgym.ENVIRONMENTS[env_id], gym.spec(env_id)
-    env = gym.make(env_id)
+    with warnings.catch_warnings():  # an id kept beside its newer version says so on make; its card says it too
+        warnings.simplefilter("ignore", DeprecationWarning)
+        env = gym.make(env_id)
     docs = docstring_sections(NetCatchEnv)
     missing = [name for name in SECTIONS if name not in docs and name != "Description"]
     if missing:
