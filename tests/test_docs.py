@@ -17,6 +17,7 @@ import gymnasium as gym
 import pytest
 
 import netgym
+from netgym.bench import report
 from netgym.launch import LAUNCH_ENTRIES
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -116,6 +117,18 @@ def test_quoted_figures_match_their_result_files(tmp_path: Path) -> None:
     assert edited != block
     readme.write_text(text.replace(block, edited))
     assert quotes.stale_blocks(tmp_path) == ["README.md: at-a-glance"]
+
+
+def test_the_benchmark_report_is_what_its_result_files_render() -> None:
+    """docs/BENCHMARKS.md is what ``scripts/report.py --render`` makes of docs/results/report.json
+    and the result files sections 10-12 quote, so no hand edit of it outlives the next run."""
+    assert report.to_markdown(*report.load()) == (ROOT / "docs" / "BENCHMARKS.md").read_text()
+
+
+def test_a_report_comes_back_from_its_result_file_as_it_was_saved(tmp_path: Path) -> None:
+    kept, _ = report.load()
+    record = report.save(kept, tmp_path / "report.json")
+    assert report.load(tmp_path / "report.json") == (kept, record)
 
 
 def test_every_quoted_block_is_generated() -> None:

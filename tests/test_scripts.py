@@ -108,7 +108,7 @@ def test_report_quick_covers_every_section() -> None:
     for integrator in INTEGRATORS:
         assert f"| {integrator} |" in out
     assert "NumPy vectorised" in out
-    assert "Reference: rk4 at dt = 0.0001 s." in out  # --quick settles its coarser reference in seconds
+    assert "against rk4 at dt = 0.0001 s." in out  # --quick settles its coarser reference in seconds
     assert "| default | 2..N | all | 4 |" in out  # two 3-ball episodes against a fresh reference
     assert "| default (IMEX Euler, 26.9 ms, net inertia 4x, to 0.1 m/s) |" in out
 
