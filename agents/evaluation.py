@@ -24,17 +24,26 @@ class Policy(Protocol):
 
 @dataclass(frozen=True)
 class CaptureRate:
-    """Captured throws out of all throws, and the Wilson 95% interval of the rate."""
+    """Captured throws out of all throws, and the Wilson 95% interval of the rate; with
+    ``by_throw``, the captures by throw index within the episode (``by_throw[k]``: the
+    episodes' throw ``k + 1`` captured) out of ``episodes`` episodes."""
 
     captured: int
     throws: int
     low: float
     high: float
+    by_throw: tuple[int, ...] = ()
+    episodes: int = 0
 
     @property
     def rate(self) -> float:
         """Fraction of throws captured."""
         return self.captured / self.throws
+
+    @property
+    def rate_by_throw(self) -> tuple[float, ...]:
+        """Fraction of the episodes whose throw ``k + 1`` was captured, for each index ``k``."""
+        return tuple(count / self.episodes for count in self.by_throw)
 
     def __str__(self) -> str:
         return (f"{100 * self.rate:.1f}% ({self.captured}/{self.throws} throws; "
@@ -58,20 +67,24 @@ def evaluate(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, se
     ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also be a function of
     the :class:`NetCatchEnv` that returns the policy (for one that reads the env, such as
     :class:`~agents.oracle.InformedOracle`). The policy is given its recurrent ``state`` back
-    and ``episode_start`` (as SB3's ``evaluate_policy`` does), so policies with memory work too."""
+    and ``episode_start`` (as SB3's ``evaluate_policy`` does), so policies with memory work too.
+    Captures are also counted by throw index within the episode (``by_throw``)."""
     env = gym.make(env_id, disable_env_checker=True, **env_kwargs)
     if isinstance(policy, type) or not hasattr(policy, "predict"):
         policy = policy(env.unwrapped)
-    captured = throws = 0
+    throws = 0
+    by_throw: list[int] = []
     for episode in tqdm(range(episodes), desc=progress, unit="episode", disable=progress is None, leave=False):
         obs, _ = env.reset(seed=seed + episode)
-        done, state, start = False, None, True
+        done, state, index = False, None, 0
         while not done:
-            action, state = policy.predict(obs, state=state, episode_start=np.array([start]), deterministic=True)
-            start = False
+            action, state = policy.predict(obs, state=state, episode_start=np.array([index == 0]), deterministic=True)
             obs, _, terminated, truncated, info = env.step(action)
-            captured += int(info["captured"])
-            throws += 1
+            if index == len(by_throw):
+                by_throw.append(0)
+            by_throw[index] += int(info["captured"])
+            throws, index = throws + 1, index + 1
             done = terminated or truncated
     env.close()
-    return CaptureRate(captured, throws, *wilson_interval(captured, throws))
+    captured = sum(by_throw)
+    return CaptureRate(captured, throws, *wilson_interval(captured, throws), tuple(by_throw), episodes)
