@@ -233,6 +233,17 @@ def at_a_glance() -> str:
     return "\n".join(lines)
 
 
+def windy_per_throw() -> str:
+    """The capture rates by throw index on NetCatchWindy-v0, and how the best fixed first throw was found."""
+    from agents.windy_throws import search_summary, table
+
+    record = read_results(RESULTS / "windy_per_throw.json")
+    figures = record["figures"]
+    return "\n".join([table(figures), f"\n{search_summary(figures)}",
+                      f"\nSource: `docs/results/windy_per_throw.json`, written by `{record['command']}` "
+                      f"({record['written']}, {record['machine']})."])
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "environments": environments,
     "environments-docs": lambda: environments(cards="environments/"),
@@ -251,6 +262,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
     "learning-curve-windy-stack5": lambda: learning_curve("ppo_windy_stack5_curve",
                                                           (0, 8192, 16384, 24576, 32768, 40960)),
+    "windy-per-throw": windy_per_throw,
 }
 """How each quoted block is made."""
 
