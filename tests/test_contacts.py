@@ -26,8 +26,9 @@ def coefficients(restitution: float, friction: float) -> np.ndarray:
 
 def resolve(x: np.ndarray, v: np.ndarray, inv_mass: np.ndarray, n_net: int, segments: np.ndarray,
             coef: np.ndarray) -> None:
-    """One pass of :func:`contacts.resolve_contacts` over bodies ``x``, ``v`` (net particles
-    first, then balls of radius RADIUS), no poles, the substep having started at ``x``."""
+    """One pass of :func:`contacts.resolve_ball_contacts` and :func:`contacts.resolve_ground` over
+    bodies ``x``, ``v`` (net particles first, then balls of radius RADIUS), no poles, the substep
+    having started at ``x``."""
     ordered, segment_start = index_segments(np.asarray(segments, dtype=np.int64).reshape(-1, 2), n_net)
     net = x[:n_net]
     box = np.concatenate([net.min(axis=0), net.max(axis=0)]) if n_net else np.array([np.inf] * 3 + [-np.inf] * 3)
@@ -36,7 +37,9 @@ def resolve(x: np.ndarray, v: np.ndarray, inv_mass: np.ndarray, n_net: int, segm
                         segments=ordered, segment_start=segment_start, poles=contacts.Poles.none(),
                         materials=contacts.Materials.of_table(coef), restitution_threshold=THRESHOLD, gravity=0.0,
                         drag=0.0, ball_radius=RADIUS, opening=nowhere.kernel_record(), ball_drag=0.0, wind=np.zeros(3))
-    contacts.resolve_contacts(contacts.Bodies(x, v, inv_mass, x.copy()), model, box, np.zeros(n_net, dtype=np.int64))
+    bodies = contacts.Bodies(x, v, inv_mass, x.copy())
+    contacts.resolve_ball_contacts(bodies, model, box, np.zeros(n_net, dtype=np.int64))
+    contacts.resolve_ground(bodies, model)
 
 
 @pytest.mark.parametrize("e", [0.0, 0.5, 1.0])

@@ -175,6 +175,13 @@ def rllib_throughput() -> str:
     return "\n".join(lines)
 
 
+def first_step() -> str:
+    """How long a first run waits for the kernels to compile, and a later one for the cache."""
+    from netgym.bench import first_step_text
+
+    return first_step_text.block(RESULTS / "first_step.json")
+
+
 def _episode_row(rows: list[dict], scene: str, policy: str, balls: int) -> dict:
     return _only_row(rows, "episodes.json", f"{scene}, {policy}, {balls} balls",
                      lambda r: (r["scene"], r["policy"], r["balls"]) == (scene, policy, balls))
@@ -252,6 +259,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "at-a-glance": at_a_glance,
     "rllib-throughput": rllib_throughput,
     "roofline": lambda: roofline.to_markdown(read_results(RESULTS / "roofline.json")),
+    "first-step": first_step,
     "variant-speed": lambda: speed_table.block(RESULTS / "variant_speed.json"),
     "contact-convergence": lambda: convergence_table.block(RESULTS / "contact_convergence.json"),
     "variants-summary": variants_summary,

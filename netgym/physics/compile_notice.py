@@ -1,53 +1,98 @@
-"""One line on stderr when the simulator's numba kernels compile, so that a first run does not
-sit silent: numba compiles them on their first call unless its on-disk cache has them.
+"""Lines on stderr while the simulator's numba kernels compile, so that a start does not sit
+silent: numba compiles a kernel at its first call unless its on-disk cache has it already.
 
-:func:`announce_compilation` listens to numba's compile events and writes the line at the first
-compilation of a netgym kernel, then stays quiet; a run that loads every kernel from the cache
-writes nothing. Subprocesses started afterwards (vectorised environments' workers) inherit the
-environment variable :data:`SHOWN` and stay quiet too.
+:class:`CompileNotice` listens to numba's compile events. At the first compilation of a netgym
+kernel it writes :data:`MESSAGE`; while a compilation goes on for more than a few seconds it
+keeps a line up to date with the kernels compiled so far, the seconds spent on them and the
+kernel compiling now, and ends that line when the compilation ends. A run that loads every
+kernel from the cache writes nothing. Subprocesses started afterwards (vectorised environments'
+workers) inherit the environment variable :data:`SHOWN` and stay quiet.
 """
 
 from __future__ import annotations
 
 import os
 import sys
+import time
+from collections.abc import Callable
 from typing import TextIO
 
 from numba.core import event
 
 SHOWN = "NETGYM_COMPILE_NOTICE_SHOWN"
-"""Set in the environment once the line was written (by this process or its parent)."""
-TYPICAL_SECONDS = 15   # from an empty cache to the first step of NetCatch-v0 (scripts/first_step_time.py)
-MESSAGE = (f"netgym: compiling the simulator's kernels (first run only, ~{TYPICAL_SECONDS} s; "
-           "later runs load them from numba's cache)...")
+"""Set in the environment once the notice was written (by this process or its parent)."""
+MESSAGE = ("netgym: compiling the simulator's kernels that numba's cache does not have yet "
+           "(once; later runs load them from the cache)")
 
 
 class CompileNotice(event.Listener):
-    """A numba compile-event listener that writes :data:`MESSAGE` to ``stream`` (default
-    stderr) when the first kernel of ``package`` starts compiling, unless :data:`SHOWN` is set."""
+    """A numba compile-event listener for the kernels of ``package``: writes :data:`MESSAGE` to
+    ``stream`` (default stderr) when the first of them starts compiling, unless :data:`SHOWN` is
+    set then, and from ``quiet`` seconds into a compilation a progress line (see
+    :meth:`progress`), rewritten as each kernel ends and ended with the outermost one."""
 
-    def __init__(self, package: str = "netgym", stream: TextIO | None = None) -> None:
-        self.package = package
-        self.stream = stream
+    def __init__(self, package: str = "netgym", stream: TextIO | None = None, quiet: float = 2.0,
+                 clock: Callable[[], float] = time.perf_counter) -> None:
+        self.package, self.stream, self.quiet, self.clock = package, stream, quiet, clock
+        self.silent: bool | None = None  # decided at the first compilation: True if a parent wrote the notice
+        self.compiling: list[str] = []   # the kernels compiling now, outermost first
+        self.compiled = 0
+        self.spent = 0.0                 # seconds of the compilations that ended
+        self.started = 0.0               # when the outermost compilation now going on started
+        self.shown = False               # whether this compilation's progress line was written
+        self.width = 0                   # the length of that line as last written
 
     def on_start(self, ev: event.Event) -> None:
-        """Write the line if a kernel of the package starts compiling and nobody has yet."""
-        if os.environ.get(SHOWN) or not _defined_in(ev, self.package):
+        """Note the kernel; write the notice at the package's first compilation."""
+        name = _kernel_name(ev, self.package)
+        if name is None:
             return
-        os.environ[SHOWN] = "1"
-        stream = sys.stderr if self.stream is None else self.stream
-        stream.write(MESSAGE + "\n")
-        stream.flush()
+        if self.silent is None:
+            self.silent = bool(os.environ.get(SHOWN))
+            os.environ[SHOWN] = "1"
+            self._write(MESSAGE + "\n")
+        if not self.compiling:
+            self.started, self.shown, self.width = self.clock(), False, 0
+        self.compiling.append(name)
 
     def on_end(self, ev: event.Event) -> None:
-        """Nothing to do when a compilation ends."""
+        """Count the kernel; show the progress once the compilation has lasted ``quiet`` s."""
+        if _kernel_name(ev, self.package) is None:
+            return
+        self.compiling.pop()
+        self.compiled += 1
+        elapsed = self.clock() - self.started
+        if self.shown or elapsed >= self.quiet:
+            line = self.progress(self.spent + elapsed)
+            self._write("\r" + line.ljust(self.width))  # padded over the longer line it replaces
+            self.shown, self.width = True, len(line)
+        if not self.compiling:
+            self.spent += elapsed
+            if self.shown:
+                self._write("\n")
+
+    def progress(self, seconds: float) -> str:
+        """The progress line: kernels compiled, seconds spent compiling, the kernel compiling now."""
+        now = f", compiling {self.compiling[-1]}" if self.compiling else ""
+        return f"netgym: {self.compiled} kernels compiled in {seconds:.0f} s{now}"
+
+    def _write(self, text: str) -> None:
+        if self.silent:
+            return
+        stream = sys.stderr if self.stream is None else self.stream
+        stream.write(text)
+        stream.flush()
 
 
-def _defined_in(ev: event.Event, package: str) -> bool:
-    """True if the compile event is of a function of ``package`` or its submodules."""
+def _kernel_name(ev: event.Event, package: str) -> str | None:
+    """``module.function`` (the package's prefix left out) of the kernel the compile event is
+    about, or None when the kernel is not of ``package`` or its submodules."""
     dispatcher = (ev.data or {}).get("dispatcher")
-    module = getattr(getattr(dispatcher, "py_func", None), "__module__", None) or ""
-    return module == package or module.startswith(package + ".")
+    function = getattr(dispatcher, "py_func", None)
+    module = getattr(function, "__module__", None) or ""
+    if module != package and not module.startswith(package + "."):
+        return None
+    return f"{module.removeprefix(package + '.')}.{function.__name__}"
 
 
 def announce_compilation() -> CompileNotice:

@@ -352,19 +352,20 @@ def _ball_segments(bodies, b, radius, segments, segment_start, material, thresho
 
 
 @kernel
-def resolve_contacts(bodies, model, net_box, near):
-    """Resolve all contacts of :class:`Bodies` once, in a fixed order (deterministic Gauss-Seidel pass): ball/ball
-    pairs first, then each ball's poles and net, then the ground. A pair's projection pushes
-    its balls along the line between them, partly along their supports; the supports' static
-    friction, resolved after it, holds that push as it holds gravity's. (Resolved after the
-    supports, the pushes escaped their friction and piles crept on for good.)
+def resolve_ball_contacts(bodies, model, net_box, near):
+    """Resolve the balls' contacts of :class:`Bodies` once, in a fixed order (deterministic
+    Gauss-Seidel pass): ball/ball pairs first, then each ball's poles and net; :func:`resolve_ground`
+    follows. A pair's projection pushes its balls along the line between them, partly along their
+    supports; the supports' static friction, resolved after it, holds that push as it holds
+    gravity's. (Resolved after the supports, the pushes escaped their friction and piles crept on
+    for good.)
 
     ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
     sphere does not overlap it skips the particle and segment tests (broad phase); the others
     test only the segments near them (see :func:`_ball_net`; ``model``: the
     :class:`~netgym.physics.model.KernelModel`, ``near``: scratch for ``n_net`` particle indices).
     """
-    x, inv_mass = bodies.x, bodies.inv_mass
+    x = bodies.x
     n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold
     n = x.shape[0]
     reach = 2.0 * radius
@@ -388,7 +389,15 @@ def resolve_contacts(bodies, model, net_box, near):
             if extent < 0.0:
                 extent = _segment_extent(x, model.segments)
             moved += _ball_net(bodies, b, model, extent + 2.0 * moved, near)
-    for k in range(n):
+
+
+@kernel
+def resolve_ground(bodies, model):
+    """Resolve every body's contact with the ground once, after :func:`resolve_ball_contacts` (a net
+    without balls needs only this pass, so that its relaxation compiles without the balls')."""
+    x, inv_mass = bodies.x, bodies.inv_mass
+    n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold
+    for k in range(x.shape[0]):
         floor = radius if k >= n_net else 0.0
         if x[k, 2] < floor and inv_mass[k] > 0.0:
             material = materials.ball_ground if k >= n_net else materials.net_ground

@@ -99,10 +99,11 @@ def integrate_watched(target: Integrand, model: KernelModel, settings: Settings,
 def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: int, workspace: Workspace,
           rest: RestTest) -> SimulationDivergedError | None:
     """Relax ``target.state`` for at most ``n_steps`` steps, until ``rest`` passes (see
-    :func:`~netgym.physics.stepping.relax`); returns as :func:`integrate` does."""
+    :func:`~netgym.physics.stepping.relax`); returns as :func:`integrate` does. A net without
+    balls (a new net settling) is relaxed by the kernels compiled without the balls' passes."""
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(
-        s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
+        s.x, s.v, s.inv_mass, s.entered if s.entered.size else None, model, settings, n_steps,
         workspace.scratch(s, model), target.counters, rest.record),
         s.time + rest.steps * settings.dt))
 

@@ -9,7 +9,7 @@ import numpy as np
 from netgym.physics.jit import kernel
 
 from netgym.physics.air import rk4_step
-from netgym.physics.contacts import Bodies, resolve_contacts
+from netgym.physics.contacts import Bodies, resolve_ball_contacts, resolve_ground
 from netgym.physics.forces import kinetic_energy
 from netgym.physics.integrators import START_SLOT, smooth_step
 from netgym.physics.rows import copy_row, copy_rows
@@ -132,27 +132,33 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast: the
     passes of a substep in order, each handed the :class:`~netgym.physics.model.KernelModel`
     or the parts of it it needs; ``buffers`` from :func:`_step_buffers`; ``net_gravity``: the
-    acceleration gravity gives the net (``model.gravity`` but in a relaxation with inertia)."""
+    acceleration gravity gives the net (``model.gravity`` but in a relaxation with inertia);
+    ``entered``: the balls' flags, or None for a net without balls, whose kernels numba then
+    compiles without the balls' passes (it prunes the branches on ``entered is not None``)."""
     before_v, box, speeds, near = buffers
     n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
     start = scratch.work[START_SLOT]  # every body's position at the start of the substep
     before = start[n_net:]
     n_balls = x.shape[0] - n_net
     substeps = 1
-    if n_balls > 0:
+    if entered is not None and n_balls > 0:
         substeps = _substeps(x, v, n_net, radius, dt, settings.max_travel * radius, speeds)
     h = dt / substeps
+    bodies = Bodies(x, v, inv_mass, start)
     for _sub in range(substeps):
         copy_rows(start, x)
         for b in range(n_balls):
             for c in range(3):
                 before_v[b, c] = v[n_net + b, c]
         smooth_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, stats)
-        if n_balls > 0:
-            _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
-            _net_box(x, n_net, box)
-        resolve_contacts(Bodies(x, v, inv_mass, start), model, box, near)
-        update_entered(x, before, n_net, entered, model.opening)
+        if entered is not None:
+            if n_balls > 0:
+                _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
+                _net_box(x, n_net, box)
+            resolve_ball_contacts(bodies, model, box, near)
+        resolve_ground(bodies, model)
+        if entered is not None:
+            update_entered(x, before, n_net, entered, model.opening)
         stats[0].substeps += 1
 
 
