@@ -6,11 +6,14 @@ model is present).
 
 from __future__ import annotations
 
+import os
+import sys
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+import gymnasium as gym
 import numpy as np
 import torch
 from stable_baselines3 import PPO
@@ -44,13 +47,31 @@ def torch_threads(n: int) -> Iterator[None]:
         torch.set_num_threads(before)
 
 
+class ReadyLine:
+    """Says on stderr that a worker's environment is made (the last step of ``make_vec_env``'s
+    factory in the worker: its ``wrapper_class``), with the seconds since ``started`` (epoch
+    seconds, from the process that starts the workers). Returns the environment as it is."""
+
+    def __init__(self, started: float) -> None:
+        self.started = started
+
+    def __call__(self, env: gym.Env) -> gym.Env:
+        sys.stderr.write(f"environment worker {os.getpid()} ready after {time.time() - self.started:.0f} s\n")
+        sys.stderr.flush()
+        return env
+
+
 def make_training_env(n_envs: int, seed: int, env_id: str = "NetCatch-v0", frame_stack: int = 1) -> VecEnv:
     """The vectorised training environment: ``make_vec_env`` with ``SubprocVecEnv`` (one
     process per environment), observations stacked over the last ``frame_stack`` steps
-    (``VecFrameStack``) when it is above 1."""
+    (``VecFrameStack``) when it is above 1. Starting the workers takes a while (each imports
+    torch and netgym and settles its net): it says so on stderr, and each worker when it is ready."""
     compile_kernels(env_id, **ENV_KWARGS)  # once, before the workers start
+    sys.stderr.write(f"starting {n_envs} environment workers (each imports torch and netgym, then makes {env_id} "
+                     "and settles its net) ...\n")
+    sys.stderr.flush()
     env = make_vec_env(f"netgym:{env_id}", n_envs=n_envs, seed=seed, vec_env_cls=SubprocVecEnv,
-                       env_kwargs=dict(ENV_KWARGS))
+                       env_kwargs=dict(ENV_KWARGS), wrapper_class=ReadyLine(time.time()))
     return VecFrameStack(env, frame_stack) if frame_stack > 1 else env
 
 
