@@ -71,7 +71,7 @@ DESIGN_ITEMS = (
     "`tests/test_golden.py`); section 10 sets the resulting pass against the machine's roofs.",
     "- A segment broad phase for ball/net contacts: only the segments whose first particle lies near the ball are "
     "tested, bitwise the same results (`tests/test_throws.py::test_the_segment_broad_phase_changes_nothing`); "
-    "`resolve_contacts` with 9 balls in the net 42.1 -> 23.9 us.",
+    "the ball contacts with 9 balls in the net 42.1 -> 23.9 us.",
     "- Contacts between balls resolved before each ball's supports, so that the supports' friction holds the pairs' "
     "pushes as it holds gravity: a ball resting on two others in the basket moves 0.02 mm per 2 s at 2 ms, against "
     "12 mm in the other order (`tests/test_resting_contact.py`); no outcome, reward or reason of the golden "
