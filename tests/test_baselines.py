@@ -244,7 +244,10 @@ def test_the_best_learner_has_the_highest_iqm_and_ties_go_to_more_seeds_then_the
              ("ppo", "NetCatchGoal-v0"): _cell("ppo", "NetCatchGoal-v0", [0.5, 0.6, 0.7, 0.8]),
              ("random", "NetCatch-v0"): _cell("random", "NetCatch-v0", [1.0])}
     best = report.best_learners(cells)
-    assert best == {"NetCatch-v0": "sac", "NetCatchGoal-v0": "ppo"}  # the reference's 100% does not count
+    assert best == {"NetCatch-v0": ["sac"], "NetCatchGoal-v0": ["ppo"]}  # the reference's 100% does not count
+    tied = {**cells, ("tqc", "NetCatch-v0"): _cell("tqc", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95])}
+    assert report.best_learners(tied)["NetCatch-v0"] == ["sac", "tqc"]
+    assert report.best_line(tied, "NetCatch-v0").startswith("sac, tqc (tied): 90.0% [")
     matrix = report.matrix(cells).splitlines()
     assert matrix[0] == "| algorithm | NetCatch-v0 | NetCatchGoal-v0 |"
     sac_row = next(line for line in matrix if line.startswith("| sac |"))

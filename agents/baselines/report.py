@@ -83,7 +83,8 @@ def table_ids(cells: Cells) -> list[str]:
 def matrix(cells: Cells) -> str:
     """The markdown table a reader looks at first: one row per algorithm, one column per id, each
     cell the IQM capture rate over seeds with its 95% interval and the number of seeds (the best
-    of each id in bold); then the references' rates (one run each: they do not learn)."""
+    of each id, and any tied with it, in bold); then the references' rates (one run each: they do
+    not learn)."""
     ids = table_ids(cells)
     best = best_learners(cells)
     lines = ["| algorithm | " + " | ".join(ids) + " |", "|---|" + "---:|" * len(ids)]
@@ -92,7 +93,7 @@ def matrix(cells: Cells) -> str:
         for env_id in ids:
             records = cells.get((algo, env_id))
             text = f"{_interval(_rates(records))} (n={len(records)})" if records else "-"
-            row.append(f"**{text}**" if best.get(env_id) == algo else text)
+            row.append(f"**{text}**" if algo in best.get(env_id, ()) else text)
         lines.append(f"| {algo} | " + " | ".join(row) + " |")
     for reference in REFERENCES:
         rates = [cells.get((reference, env_id)) for env_id in ids]
@@ -101,23 +102,27 @@ def matrix(cells: Cells) -> str:
     return "\n".join(lines)
 
 
-def best_learners(cells: Cells) -> dict[str, str]:
-    """Per env id, the learner with the highest IQM capture rate over its seeds (ties: more seeds,
-    then the higher mean)."""
-    scored = sorted((iqm(_rates(records)), len(records), float(np.mean(_rates(records))), algo, env_id)
-                    for (algo, env_id), records in cells.items() if algo not in REFERENCES)
-    return {env_id: algo for *_, algo, env_id in scored}
+def best_learners(cells: Cells) -> dict[str, list[str]]:
+    """Per env id, the learners with the highest IQM capture rate over their seeds (ties: more
+    seeds, then the higher mean; learners equal in all three are all named, in the grid's order)."""
+    scores: dict[str, dict[str, tuple]] = defaultdict(dict)
+    for (algo, env_id), records in cells.items():
+        if algo not in REFERENCES:
+            rates = _rates(records)
+            scores[env_id][algo] = (iqm(rates), len(records), float(np.mean(rates)))
+    return {env_id: [algo for algo in ALGORITHMS if by_algo.get(algo) == max(by_algo.values())]
+            for env_id, by_algo in scores.items()}
 
 
 def best_line(cells: Cells, env_id: str) -> str:
-    """One sentence naming ``env_id``'s best learner: its IQM capture rate, interval, seeds and
+    """One sentence naming ``env_id``'s best learner(s): the IQM capture rate, interval, seeds and
     budget; or that no learner has run on it."""
-    algo = best_learners(cells).get(env_id)
-    if algo is None:
+    best = best_learners(cells).get(env_id)
+    if best is None:
         return "none trained yet"
-    records = cells[algo, env_id]
-    return (f"{algo}: {_interval(_rates(records))} IQM over {len(records)} seeds at "
-            f"{records[0]['budget']:,} steps")
+    records = cells[best[0], env_id]
+    return (f"{', '.join(best)}{' (tied)' if len(best) > 1 else ''}: {_interval(_rates(records))} IQM over "
+            f"{len(records)} seeds at {records[0]['budget']:,} steps")
 
 
 def protocol(cells: Cells) -> str:
