@@ -44,8 +44,10 @@ def normalised(cells: Cells) -> dict[tuple[str, str], np.ndarray]:
 
 
 def _interval(scores: np.ndarray, scale: float = 100.0, unit: str = "%") -> str:
+    """IQM and 95% interval: rates in percent to 0.1, normalised scores (no unit) to 0.01."""
     low, high = bootstrap_ci(scores)
-    return f"{scale * iqm(scores):.1f}{unit} [{scale * low:.1f}, {scale * high:.1f}]"
+    digits = 1 if unit else 2
+    return f"{scale * iqm(scores):.{digits}f}{unit} [{scale * low:.{digits}f}, {scale * high:.{digits}f}]"
 
 
 def table(cells: Cells) -> str:
