@@ -18,8 +18,9 @@ from netgym.bench.results import read_results
 
 Cells = dict[tuple[str, str], list[dict[str, Any]]]
 PANELS_A_ROW = 4
-REFERENCE_COLOURS = {"random": "gray", "blind": "black", "oracle": "green"}
 """Columns of the figure's grid of panels (one an id, then the performance profile)."""
+REFERENCE_COLOURS = {"random": "gray", "blind": "black", "oracle": "green"}
+"""The reference runs' lines in every panel."""
 
 
 def load_cells(out: Path) -> Cells:
