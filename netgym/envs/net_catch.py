@@ -21,7 +21,8 @@ from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_mi
 from netgym.physics.frames import Film, FrameClock
 from netgym.physics.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
-from netgym.physics.throws import ThrowResult
+from netgym.physics.pause import Pause, pause
+from netgym.physics.throw import ThrowResult, throw
 from netgym.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
@@ -333,11 +334,11 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
         self._flight = velocity
-        result = self.sim.throw(launch, velocity, fast=self.fast, observer=self._film)
-        pause = None
+        result = throw(self.sim, launch, velocity, fast=self.fast, film=self._film)
+        settled = Pause()
         if self._throws_done + 1 < self.balls_per_episode:  # the net settles for the next throw (none after the last)
-            pause = self.sim.run(self.sim.pause_plan(), self._film)
-        return self.after_throw(launch, velocity, result, aimed, pause)
+            settled = pause(self.sim, self._film)
+        return self.after_throw(launch, velocity, result, aimed, settled)
 
     def _intended_launch(self, action: np.ndarray) -> tuple[float, float, float]:
         """Validate an action; its (speed, elevation, azimuth offset), values clipped to [-1, 1]."""
@@ -353,18 +354,18 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
                     aimed: np.ndarray | None = None,
-                    pause: Mapping[str, float] | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
+                    settled: Pause = Pause()) -> tuple[np.ndarray, float, bool, bool, dict]:
         """Book a finished throw, term by term: :meth:`_reward` (with :meth:`_shaping` for a
         miss), :meth:`_feedback`, :meth:`_terminated`, :meth:`_next_thrower`, then the observation
         and :meth:`_info` (``aimed``: the velocity the action meant, before launch noise;
-        ``pause``: what :meth:`~netgym.physics.simulator.Simulator.pause_plan` returned after the throw)."""
+        ``settled``: the :class:`~netgym.physics.pause.Pause` after the throw)."""
         self._throws_done += 1
         self._caught += int(result.captured)
         reward = self._reward(launch, velocity, result.captured)
         self._feedback(launch, velocity, result.captured)
         terminated = self._terminated()
         self._next_thrower(terminated)
-        info = self._info(launch, velocity, result, velocity if aimed is None else aimed, pause)
+        info = self._info(launch, velocity, result, velocity if aimed is None else aimed, settled)
         if self.render_mode == "human":
             self._renderer_show()
         return self._observation(), reward, terminated, False, info
@@ -400,11 +401,11 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._flight = None
 
     def _info(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult, aimed: np.ndarray,
-              pause: Mapping[str, float] | None) -> dict[str, Any]:
+              settled: Pause) -> dict[str, Any]:
         """The step's info (see the class docstring): the throw's outcome and its work, the
-        settling before it and after it (``pause``), the launch, the wind and the scene's draws."""
-        settle_substeps = result.settle_substeps + (pause["settle_substeps"] if pause else 0)
-        settle_time = result.settle_time + (pause["settle_time"] if pause else 0.0)
+        settling before it and after it (``settled``), the launch, the wind and the scene's draws."""
+        settle_substeps = result.settle_substeps + settled.substeps
+        settle_time = result.settle_time + settled.time
         return {"captured": result.captured, "reason": result.reason,
                 "final_position": result.final_position, "sim_time": result.time,
                 "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
