@@ -12,6 +12,8 @@ from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
 from netgym.errors import ConfigError
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
+from netgym.physics.pause import Pause, pause
 
 INTO_THE_MOUTH = ([-5.0, 0.3, 1.2], [8.0, 0.0, 2.0])
 
@@ -27,18 +29,18 @@ def test_each_scene_has_its_rule_and_both_are_selectable() -> None:
 
 def test_line_rule_decides_the_instant_the_whole_ball_is_over_the_line() -> None:
     sim = Simulator("goal")
-    result = sim.throw(*INTO_THE_MOUTH)
+    result = throw(sim, *INTO_THE_MOUTH)
     r = sim.model.ball_radius
     assert result.captured and result.reason == "crossed_line"
     depth = sim.opening.depth(result.final_position)
     assert r <= depth < r + 0.01  # just over: flown in closed form, the instant is found to 0.1 ms (8 m/s)
     assert result.time < 1.0
-    held = Simulator("goal", {"capture_rule": "held"}).throw(*INTO_THE_MOUTH)
+    held = throw(Simulator("goal", {"capture_rule": "held"}), *INTO_THE_MOUTH)
     assert held.captured and held.time > 2 * result.time  # the held rule waits until the ball rests
 
 
 def test_a_ball_wide_of_the_post_is_not_over_the_line() -> None:
-    result = Simulator("goal").throw([-5.0, 2.5, 1.0], [8.0, 0.0, 2.0])
+    result = throw(Simulator("goal"), [-5.0, 2.5, 1.0], [8.0, 0.0, 2.0])
     assert not result.captured
 
 
@@ -53,7 +55,7 @@ def test_a_ball_wholly_over_the_line_beside_the_frame_is_out_of_play(label: str,
     miss decided that instant (it would otherwise rest on the roof, or roll about beside the
     goal, for seconds). Full simulation to the time limit scores none of them either."""
     sim = Simulator("goal")
-    result = sim.throw(position, velocity)
+    result = throw(sim, position, velocity)
     r = sim.model.ball_radius
     assert not result.captured and result.reason == "out_of_play"
     assert r <= sim.opening.depth(result.final_position) < r + (0.1 if simulated else 0.01)
@@ -61,14 +63,14 @@ def test_a_ball_wholly_over_the_line_beside_the_frame_is_out_of_play(label: str,
     assert (result.substeps > 0) == simulated and result.time < 1.0
     assert sim.n_balls == 0 and (simulated or not sim.awake)  # taken out; a ball flown clear leaves the net asleep
     sim.reset()
-    full = sim.throw(position, velocity, fast=False)
+    full = throw(sim, position, velocity, fast=False)
     assert not full.captured and full.reason == "time_limit"
 
 
 def test_a_ball_launched_behind_the_line_is_not_out_of_play() -> None:
     """Only a ball launched in front of the line can go out of play over it: one launched behind
     the goal is decided as any other miss."""
-    result = Simulator("goal").throw([2.0, 0.0, 1.0], [3.0, 0.0, 1.0])
+    result = throw(Simulator("goal"), [2.0, 0.0, 1.0], [3.0, 0.0, 1.0])
     assert not result.captured and result.reason == "flies_away"
 
 
@@ -80,24 +82,24 @@ def test_a_goal_is_taken_out_and_an_untouched_goal_needs_no_pause() -> None:
     the empty net back in its settled shape, at no cost."""
     sim = Simulator("goal")
     rest = sim.state.x.copy()
-    result = sim.throw(*INTO_THE_MOUTH)
+    result = throw(sim, *INTO_THE_MOUTH)
     assert result.captured and result.substeps == 0
     assert sim.n_balls == 0 and not sim.awake and np.array_equal(sim.state.x, rest)
-    second = sim.throw([-5.0, 0.3, 1.2], [8.0, 0.0, 2.0])
+    second = throw(sim, [-5.0, 0.3, 1.2], [8.0, 0.0, 2.0])
     assert second.captured and second.settle_substeps == 0
-    for throw in sample_throws("goal", 200, seed=5):
+    for launch in sample_throws("goal", 200, seed=5):
         sim = Simulator("goal")
-        if sim.throw(*throw).captured and sim.awake:
+        if throw(sim, *launch).captured and sim.awake:
             break
     assert sim.n_balls == 0 and sim.awake and not np.array_equal(sim.state.x, rest)
     time = sim.state.time
-    assert sim.run(sim.pause_plan()) == {"settle_substeps": 0, "settle_time": 0.0}
+    assert pause(sim) == Pause()
     assert not sim.awake and np.array_equal(sim.state.x, rest) and sim.state.time == time
 
 
 def test_under_held_the_goal_keeps_its_ball() -> None:
     sim = Simulator("goal", {"capture_rule": "held"})
-    assert sim.throw(*INTO_THE_MOUTH).captured and sim.n_balls == 1
+    assert throw(sim, *INTO_THE_MOUTH).captured and sim.n_balls == 1
 
 
 def test_a_miss_flying_clear_of_the_resting_net_leaves_it_asleep() -> None:
@@ -105,10 +107,10 @@ def test_a_miss_flying_clear_of_the_resting_net_leaves_it_asleep() -> None:
     next throw starts without a pause; a full simulation integrated the net, which then settles."""
     sim = Simulator("basket")
     wide = ([6.0, 0.0, 1.5], [0.0, 6.0, 4.0])
-    miss = sim.throw(*wide)
+    miss = throw(sim, *wide)
     assert not miss.captured and miss.substeps == 0 and not sim.awake
-    assert sim.throw(*wide).settle_substeps == 0
-    assert not sim.throw(*wide, fast=False).captured and sim.awake
+    assert throw(sim, *wide).settle_substeps == 0
+    assert not throw(sim, *wide, fast=False).captured and sim.awake
 
 
 def test_held_decides_once_the_ball_cannot_reach_the_mouth_before_the_time_limit() -> None:
@@ -118,12 +120,12 @@ def test_held_decides_once_the_ball_cannot_reach_the_mouth_before_the_time_limit
     mouth, it is not."""
     sim = Simulator("goal", {"capture_rule": "held"})
     r = sim.model.ball_radius
-    deep = sim.throw([0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0])
+    deep = throw(sim, [0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0])
     assert deep.captured and deep.reason == "cannot_leave" and deep.time < 0.5
     sim.reset()
-    assert sim.throw([0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0], fast=False).captured
+    assert throw(sim, [0.6, 0.0, r + 0.01], [0.0, 0.0, 0.0], fast=False).captured
     sim.reset()
-    leaving = sim.throw([0.3, 0.0, r + 0.01], [-3.0, 0.0, 0.0])  # rolls out through the mouth
+    leaving = throw(sim, [0.3, 0.0, r + 0.01], [-3.0, 0.0, 0.0])  # rolls out through the mouth
     assert not leaving.captured and leaving.reason != "cannot_reach_opening"
 
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
 
 
 @pytest.mark.parametrize("position", [[1.0, 0.0, 1.8],    # centre on the +x wall
@@ -14,9 +15,9 @@ from netgym.physics.simulator import Simulator
                                       [-1.0, 0.0, 2.2]])  # centre on the -x wall
 def test_fast_path_and_full_simulation_agree_for_a_ball_launched_on_the_net(position: list[float]) -> None:
     sim = Simulator("basket")
-    fast = sim.throw(position, [0.0, 0.0, 0.0])
+    fast = throw(sim, position, [0.0, 0.0, 0.0])
     sim.reset()
-    full = sim.throw(position, [0.0, 0.0, 0.0], fast=False)
+    full = throw(sim, position, [0.0, 0.0, 0.0], fast=False)
     assert fast.substeps > 0  # decided only after the contacts acted
     assert fast.captured == full.captured
 

@@ -24,7 +24,7 @@ import pytest
 from netgym.bench.fast_path import compare, summarise, throw_each
 from netgym.bench.throws import Throw, sample_throws
 from netgym.physics.simulator import Simulator
-from netgym.physics.throws import ThrowResult
+from netgym.physics.throw import ThrowResult, throw
 
 STORED = Path(__file__).parent / "golden" / "full_simulation.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
@@ -103,7 +103,7 @@ def test_the_stored_full_simulation_is_reproduced(case: Case) -> None:
 
 def test_a_changed_result_is_caught() -> None:
     """The record compared above holds every float exactly: one ulp of the final position differs."""
-    result = Simulator("basket").throw(*sample_throws("basket", 1, seed=2024)[0])
+    result = throw(Simulator("basket"), *sample_throws("basket", 1, seed=2024)[0])
     nudged = dataclasses.replace(result, final_position=np.nextafter(result.final_position, np.inf))
     assert _result_record(nudged) != _result_record(result)
 

@@ -15,7 +15,7 @@ from netgym.config import load_scene
 from netgym.physics.frames import Film, FrameClock
 from netgym.physics.opening import Opening
 from netgym.physics.outcomes import HeldRule, LineRule, Reason, capture_rule
-from netgym.physics.throws import TUNING
+from netgym.physics.throw import TUNING
 
 GOAL_MOUTH = Opening.of_net(load_scene("goal").net)
 RADIUS = 0.11

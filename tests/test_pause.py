@@ -10,6 +10,8 @@ import pytest
 
 from netgym.errors import SimulationDivergedError
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
+from netgym.physics.pause import pause
 
 
 def test_long_settling_shows_progress_and_short_work_stays_quiet() -> None:
@@ -21,11 +23,11 @@ def test_long_settling_shows_progress_and_short_work_stays_quiet() -> None:
     quiet, loud = io.StringIO(), io.StringIO()
     sim.launch_ball([0.0, 0.0, 2.0], [0.0, 0.0, 0.0])
     short = Progress("settling", 60.0, stream=quiet)
-    sim.run(sim.relax_plan(), short)
+    sim.run(sim.relax_plan(), observer=short)
     short.close()
     sim.launch_ball([0.2, 0.0, 2.0], [0.0, 0.0, 0.0])
     long = Progress("settling", 60.0, quiet=0.0, every=0.0, stream=loud)
-    sim.run(sim.relax_plan(), long)
+    sim.run(sim.relax_plan(), observer=long)
     long.close()
     assert quiet.getvalue() == ""
     text = loud.getvalue()
@@ -41,17 +43,17 @@ def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> Non
     substeps = {}
     for speed in (0.1, 0.01):
         sim = Simulator("basket", {"simulation.settle_speed": speed})
-        sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, the net still moving
+        throw(sim, [0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, the net still moving
         assert sim.awake
         seen: list[np.ndarray] = []
         every_step = FrameClock(sim.settle_dt, sim.state.time)  # one request per pause step, observed
-        pause = sim.run(sim.pause_plan(), Film(every_step, lambda s: seen.append(s.state.x.copy()), settling=True))
+        settled = pause(sim, Film(every_step, lambda s: seen.append(s.state.x.copy()), settling=True))
         window = round(RELAX_WINDOW / sim.settle_dt)
         assert len(seen) > window
         assert np.abs(seen[-1] - seen[-1 - window]).max() < speed * RELAX_WINDOW
         assert np.abs(seen[-2] - seen[-2 - window]).max() >= speed * RELAX_WINDOW  # not one step sooner
         assert not sim.awake and not sim.state.v.any()
-        substeps[speed] = pause["settle_substeps"]
+        substeps[speed] = settled.substeps
     assert 0 < substeps[0.1] < substeps[0.01]
 
 
@@ -126,7 +128,7 @@ def test_a_diverging_pause_starts_again_with_the_scene_integrator(monkeypatch: p
     monkeypatch.setattr(simulator, "SETTLE_STABILITY_SHARE", 10.0)  # explicit Euler at 10x its limit
     sim = Simulator("basket", {"simulation.settle_integrator": "explicit_euler", "simulation.settle_dt": 0.05})
     assert sim.settle_dt > 9.0 * simulator.stable_dt(sim.settle_integrator, sim.modes)
-    sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])
+    throw(sim, [0.2, 0.1, 3.6], [0.0, 0.0, 0.0])
     start = sim.checkpoint()
     with pytest.raises(SimulationDivergedError):
         sim.run(sim.relax_plan(integrator=sim.settle_integrator))
@@ -134,9 +136,9 @@ def test_a_diverging_pause_starts_again_with_the_scene_integrator(monkeypatch: p
     sim.run(sim.relax_plan(integrator=sim.integrator, dt=sim.dt))
     alone = sim.state.copy()
     sim.restore(start)
-    pause = sim.run(sim.pause_plan())
+    settled = pause(sim)
     assert np.array_equal(sim.state.x, alone.x) and sim.state.time == alone.time
-    assert not sim.awake and pause["settle_substeps"] > 0
+    assert not sim.awake and settled.substeps > 0
 
 
 def test_a_pause_that_cannot_come_to_rest_in_time_raises_a_named_error() -> None:
@@ -145,7 +147,7 @@ def test_a_pause_that_cannot_come_to_rest_in_time_raises_a_named_error() -> None
     from netgym.errors import NetNotAtRestError
 
     sim = Simulator("basket")
-    sim.throw([0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, still falling
+    throw(sim, [0.2, 0.1, 3.6], [0.0, 0.0, 0.0])  # dropped in: caught, still falling
     start = sim.state.time
     with pytest.raises(NetNotAtRestError, match="did not come to rest .* within 0.2 s of relaxation"):
         sim.relax(max_time=0.2)

@@ -42,7 +42,7 @@ def test_drive_integrates_each_integrate_request_observes_each_tick_and_returns_
         yield Integrate(3, code, dt)
         return "the plan's result"
 
-    assert drive(basket, plan(), basket.workspace, lambda s: seen.append(snapshot(s))) == "the plan's result"
+    assert drive(basket, plan(), basket.workspace, observer=lambda s: seen.append(snapshot(s))) == "the plan's result"
     assert [time for time, _, _ in seen] == [start[0] + 5 * dt, start[0] + 5 * dt, start[0] + 5 * dt + 3 * dt]
     assert [substeps - start[2] for _, _, substeps in seen] == [5, 5, 8]
     assert np.array_equal(seen[0][1], seen[1][1])  # the tick moved nothing
@@ -64,7 +64,7 @@ def test_a_divergence_is_thrown_into_the_plan_with_the_state_restored(basket: Si
             return error
         return None
 
-    caught = drive(basket, plan(), basket.workspace, lambda s: seen.append(snapshot(s)))
+    caught = drive(basket, plan(), basket.workspace, observer=lambda s: seen.append(snapshot(s)))
     assert isinstance(caught, SimulationDivergedError) and "explicit_euler" in str(caught)
     assert seen == []  # a failed request is not observed
     assert basket.state.time == start[0] and np.array_equal(basket.state.x, start[1])

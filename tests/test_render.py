@@ -15,6 +15,7 @@ from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
 from netgym.physics.frames import Film, FrameClock
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
 
 
 @pytest.mark.parametrize("scene", ["basket", "goal"])
@@ -172,7 +173,7 @@ def test_frames_are_one_period_apart() -> None:
     film = Film(clock, lambda s: taken.append(s.state.time))
     for velocity in ([5.0, 0.0, 6.1], [2.0, 0.0, 3.0]):  # into the opening (caught); short of the net
         taken.clear()
-        result = sim.throw([-5.0, 0.0, 1.8], velocity, observer=film)
+        result = throw(sim, [-5.0, 0.0, 1.8], velocity, film=film)
         times = np.array(taken) - clock.anchor
         k = np.round(times * 30.0)
         assert np.array_equal(k, np.arange(len(k)))                    # every instant once, from the launch

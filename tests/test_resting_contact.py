@@ -16,6 +16,7 @@ from netgym.physics.model import KernelModel, Settings, index_segments
 from netgym.physics.opening import Opening
 from netgym.physics.simulator import Simulator
 from netgym.physics.springs import Springs
+from netgym.physics.throw import throw
 
 
 @pytest.mark.parametrize(("integrator", "dt"), [("imex_euler", 5e-4), ("imex_euler", 1e-3), ("imex_euler", 2e-3),
@@ -103,6 +104,6 @@ def test_static_friction_holds_resting_contacts_only_and_never_drags_a_ball_thro
     during the impact, the net's particles would be dragged along with the ball and open a
     hole; only resting contacts are held, and the ball stays in the net."""
     sim = Simulator("goal", {"simulation.integrator": "imex_euler", "simulation.dt": 2e-3})
-    result = sim.throw([-7.2037, -3.1822, 2.0430], [22.7389, 10.0446, -1.7383])
+    result = throw(sim, [-7.2037, -3.1822, 2.0430], [22.7389, 10.0446, -1.7383])
     assert result.captured
     assert result.final_position[0] < sim.config.net.upper[0]

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from netgym.launch import Thrower, action_to_velocity, sample_thrower, velocity_to_action
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
 
 _SIMS: dict[str, Simulator] = {}
 
@@ -40,7 +41,7 @@ signed = st.floats(-1.0, 1.0)
 def test_random_throws_are_finite_consistent_and_deterministic(scene: str, place, action) -> None:
     sim = _sim(scene)
     position, velocity = _launch(sim, place, action)
-    result = sim.throw(position, velocity)
+    result = throw(sim, position, velocity)
     assert np.all(np.isfinite(sim.state.x)) and np.all(np.isfinite(sim.state.v))
     assert np.all(np.isfinite(result.final_position))
     # a ball that came in through the opening and did not leave through it is inside the net
@@ -48,7 +49,7 @@ def test_random_throws_are_finite_consistent_and_deterministic(scene: str, place
     assert result.time <= sim.config.simulation.time_limit + 0.5 * sim.config.simulation.dt
     assert sim.n_balls == int(result.captured and sim.config.capture_rule == "held")  # goals (line) are taken out
     # the same throw from the same state gives the same outcome, bit for bit
-    again = _sim(scene).throw(position, velocity)
+    again = throw(_sim(scene), position, velocity)
     assert (again.captured, again.reason, again.substeps) == (result.captured, result.reason, result.substeps)
     assert np.array_equal(again.final_position, result.final_position)
 
@@ -66,7 +67,7 @@ def test_action_and_velocity_are_inverse() -> None:
 
 def test_a_throw_away_from_the_net_is_decided_in_closed_form() -> None:
     sim = _sim("basket")
-    result = sim.throw([5.0, 0.0, 1.8], [8.0, 0.0, 5.0])
+    result = throw(sim, [5.0, 0.0, 1.8], [8.0, 0.0, 5.0])
     assert not result.captured and result.reason == "flies_away" and result.substeps == 0
     assert sim.n_balls == 0
 
@@ -74,19 +75,19 @@ def test_a_throw_away_from_the_net_is_decided_in_closed_form() -> None:
 def test_a_ball_that_glances_off_and_leaves_for_good_is_decided_as_it_leaves() -> None:
     """Up off the rim and away: once the ball is clear of the net's surroundings on a flight that
     never comes back, the miss is decided (it was flown on to the time limit)."""
-    throw = [0.113, 3.237, 1.652], [0.02, -1.452, 8.234]
+    launch = [0.113, 3.237, 1.652], [0.02, -1.452, 8.234]
     sim = _sim("basket")
-    result = sim.throw(*throw)
+    result = throw(sim, *launch)
     assert not result.captured and result.reason == "flies_away"
     assert result.substeps > 0 and result.time < 2.0
-    assert not _sim("basket").throw(*throw, fast=False).captured
+    assert not throw(_sim("basket"), *launch, fast=False).captured
 
 
 def test_a_ball_that_stops_on_the_ground_beside_the_sleeping_net_is_decided_at_rest() -> None:
     """Bounced and slid to a stop under the basket, clear of everything: nothing can move it any
     more, so the miss is decided when it stops (it was flown on to the time limit)."""
     sim = _sim("basket")
-    result = sim.throw([-3.81, -2.29, 1.78], [3.6, 1.1, 1.55])
+    result = throw(sim, [-3.81, -2.29, 1.78], [3.6, 1.1, 1.55])
     assert not result.captured and result.reason == "at_rest" and result.substeps == 0
     assert result.time < 0.5 * sim.config.simulation.time_limit and not np.any(result.final_velocity)
     assert result.final_position[2] == sim.model.ball_radius
@@ -94,11 +95,11 @@ def test_a_ball_that_stops_on_the_ground_beside_the_sleeping_net_is_decided_at_r
 
 def test_a_lob_into_the_basket_is_captured_early_and_stays() -> None:
     sim = _sim("basket")
-    result = sim.throw([5.0, 0.0, 1.8], [-5.0, 0.0, 6.1])
+    result = throw(sim, [5.0, 0.0, 1.8], [-5.0, 0.0, 6.1])
     assert result.captured and result.reason in ("cannot_leave", "at_rest_in_net")
     assert result.time < 0.5 * sim.config.simulation.time_limit
     assert sim.n_balls == 1
-    second = sim.throw([0.0, 5.0, 1.8], [0.0, -5.0, 6.1])  # lands on the first ball
+    second = throw(sim, [0.0, 5.0, 1.8], [0.0, -5.0, 6.1])  # lands on the first ball
     assert second.captured and sim.n_balls == 2
 
 
@@ -113,7 +114,7 @@ def test_bad_launch_raises_and_leaves_the_state_alone(position, velocity, messag
     sim = _sim("basket")
     before = sim.state.copy()
     with pytest.raises(ValueError, match=message):
-        sim.throw(position, velocity)
+        throw(sim, position, velocity)
     assert sim.n_balls == 0 and np.array_equal(sim.state.x, before.x)
 
 
@@ -156,7 +157,7 @@ def test_a_ball_resting_on_a_jittering_net_is_decided_at_rest() -> None:
     a velocity jitter above ``rest_speed`` (of the order of its acceleration x dt): the rest test
     reads positions, so the throw is decided at rest, not at the time limit, and as a miss."""
     sim = Simulator("goal")
-    result = sim.throw([0.43, -0.56, 2.3], [0.0, 0.0, 0.0])
+    result = throw(sim, [0.43, -0.56, 2.3], [0.0, 0.0, 0.0])
     assert result.reason == "at_rest" and not result.captured and result.time < 3.0
     sim.launch_ball([0.43, -0.56, 2.3], [0.0, 0.0, 0.0])
     sim.step(round(3.0 / sim.dt))
@@ -174,7 +175,7 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
 
     sim = _sim("basket")
     for x in (-0.4, 0.3):
-        sim.throw([x, 0.2, 3.6], [0.0, 0.0, 0.0])
+        throw(sim, [x, 0.2, 3.6], [0.0, 0.0, 0.0])
     sim.launch_ball([-5.0, 0.0, 3.5], [9.0, 0.0, 0.5])  # into the far side of the net, hard
     m, k = sim.model, sim.kernel_model
     moves = []
@@ -213,12 +214,12 @@ def test_the_fast_path_integrates_on_the_full_simulations_step_grid() -> None:
     for position, velocity in sample_throws("goal", 6, seed=3):
         sim.reset()
         launched, ends = sim.state.time, []
-        fast = sim.throw(position, velocity, observer=lambda s: ends.append(s.state.time - launched))
+        fast = throw(sim, position, velocity, observer=lambda s: ends.append(s.state.time - launched))
         if fast.substeps == 0:
             continue  # decided in closed form: nothing integrated
         touching += 1
         steps = np.array(ends) / sim.dt
         assert np.abs(steps - np.round(steps)).max() < 1e-6
         sim.reset()
-        assert sim.throw(position, velocity, fast=False).captured == fast.captured
+        assert throw(sim, position, velocity, fast=False).captured == fast.captured
     assert touching >= 4

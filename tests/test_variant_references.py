@@ -26,7 +26,7 @@ import pytest
 import netgym  # noqa: F401  (registers the ids)
 from agents.oracle import BallisticOracle
 from netgym.physics.simulator import Simulator
-from netgym.physics.throws import ThrowResult
+from netgym.physics.throw import ThrowResult, throw
 
 STORED = Path(__file__).parent / "golden" / "variant_references.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
@@ -70,7 +70,7 @@ def _result_record(result: ThrowResult) -> dict:
 def _full(throw: dict) -> dict:
     """The throw simulated fully on a net settled from scratch."""
     sim = Simulator(throw["scene"])
-    return _result_record(sim.throw(throw["position"], throw["velocity"], fast=False))
+    return _result_record(throw(sim, throw["position"], throw["velocity"], fast=False))
 
 
 def _full_each(throws: list[dict], workers: int) -> list[dict]:

@@ -10,10 +10,12 @@ import numpy as np
 import pytest
 
 from netgym.bench.throws import sample_throws
-from netgym.physics import approach, throws
+from netgym.physics import approach
+from netgym.physics.throw import recipe
 from netgym.physics.plans import Integrate
 from netgym.physics.simulator import Simulator
 from netgym.physics.watch import RestWindow, at_rest, remember
+from netgym.physics.throw import throw
 
 
 def _throw_all(sim: Simulator, launches) -> list[tuple]:
@@ -21,7 +23,7 @@ def _throw_all(sim: Simulator, launches) -> list[tuple]:
     result's fields (the work done among them) and the state after it."""
     outcomes = []
     for position, velocity in launches:
-        r = sim.throw(position, velocity)
+        r = throw(sim, position, velocity)
         s = sim.state
         outcomes.append((r.captured, r.entered, r.reason, r.time, r.substeps, r.settle_substeps,
                          r.final_position.tobytes(), r.final_velocity.tobytes(), s.x.tobytes(), s.v.tobytes(),
@@ -49,7 +51,7 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
     through air, the pieces are flown by ``approach_through_air``."""
     launches = SPECIAL[scene] + sample_throws(scene, 16, seed=11)
     calls = {"watched": 0, "pieces": 0}
-    kernel, fly = throws.Watched, getattr(approach, flight)
+    kernel, fly = recipe.Watched, getattr(approach, flight)
 
     def watched(integrator, dt, watch):
         calls["watched"] += 1
@@ -60,7 +62,7 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
         calls["pieces"] += time != args[TIME]
         return time
 
-    monkeypatch.setattr(throws, "Watched", watched)
+    monkeypatch.setattr(recipe, "Watched", watched)
     monkeypatch.setattr(approach, flight, pieces)
     compiled = _throw_all(Simulator(scene, overrides), launches)
     assert calls["watched"] > 0 and calls["pieces"] > 0  # both loops took part
@@ -70,7 +72,7 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
     def one_chunk(integrator, dt, watch):  # what a throw asked for before the watched loop
         return Integrate(min(watch.chunk, round((watch.deadline - sim.state.time) / dt)), integrator, dt)
 
-    monkeypatch.setattr(throws, "Watched", one_chunk)
+    monkeypatch.setattr(recipe, "Watched", one_chunk)
     monkeypatch.setattr(approach, flight, lambda *args: args[TIME])  # no piece flown in the kernel
     assert _throw_all(sim, launches) == compiled
 
@@ -116,7 +118,7 @@ def test_a_check_a_rounding_error_after_the_last_is_the_same_instant() -> None:
     that check for the same instant (it filled up otherwise, and the throw stopped)."""
     position, velocity = sample_throws("basket", 90, seed=99)[89]
     sim = Simulator("basket", {"simulation.integrator": "implicit_euler", "simulation.dt": 0.01}, check_stability=False)
-    result = sim.throw(position, velocity)
+    result = throw(sim, position, velocity)
     assert result.captured and result.reason == "cannot_leave"
     rest = _window()
     remember(rest, 0.14, np.zeros((2, 3)))

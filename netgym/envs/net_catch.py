@@ -15,6 +15,7 @@ from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError, InvalidArgumentError
 from netgym.envs.observation import ObservationIndex
+from netgym.envs.reset_options import checked_reset_options
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
 from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
@@ -27,7 +28,6 @@ from netgym.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
 FILMED_MODES = ("human", "rgb_array_list", "replay_list")   # render modes that take every frame of a throw
-RESET_OPTIONS = ("overrides", "thrower")
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
 SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
 
@@ -247,7 +247,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
         Bad options raise a ValueError (or ConfigError) and leave the env as it was.
         """
-        options = self._check_options(options)
+        options = checked_reset_options(options, self.scene.throw)
         overrides = dict(options.get("overrides", self._overrides))
         scene = self._base_scene.replace(overrides) if overrides else self._base_scene  # bad overrides fail here
         super().reset(seed=seed)
@@ -272,40 +272,6 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             self._film.clock.restart(self.sim.state.time)
             self._film(self.sim)
         return self._observation(), {"wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
-
-    def _check_options(self, options: Any) -> dict[str, Any]:
-        """Validate reset options (see :meth:`reset`) before anything changes."""
-        if options is None:
-            return {}
-        if not isinstance(options, Mapping):
-            raise InvalidArgumentError(f"options must be a dict or None, got {type(options).__name__}")
-        unknown = sorted(set(map(str, options)) - set(RESET_OPTIONS))
-        if unknown:
-            raise InvalidArgumentError(f"unknown reset option(s) {unknown}; NetCatch-v0 takes {list(RESET_OPTIONS)}")
-        thrower = options.get("thrower", {})
-        if not isinstance(thrower, Mapping):
-            raise InvalidArgumentError(f"options['thrower'] must be a dict, got {type(thrower).__name__}")
-        ranges = {"distance": self.scene.throw.distance, "bearing": self.scene.throw.bearing,
-                  "height": self.scene.throw.height}
-        for key, value in thrower.items():
-            if key not in ranges:
-                raise InvalidArgumentError(f"options['thrower'] has unknown key {key!r}; allowed: {list(ranges)}")
-            lo, hi = ranges[key]
-            if not is_real(value) or not lo <= float(value) <= hi:
-                raise InvalidArgumentError(f"options['thrower']['{key}'] = {value!r}; "
-                                           f"allowed: a number in [{lo:g}, {hi:g}]")
-        overrides = options.get("overrides", {})
-        if not isinstance(overrides, Mapping):
-            raise InvalidArgumentError(f"options['overrides'] must be a dict, got {type(overrides).__name__}")
-        if any(str(field).startswith("throw.") for field in overrides):
-            raise InvalidArgumentError("options['overrides'] may not change the throw ranges (they define the spaces); "
-                                       "make a new env with those overrides instead")
-        checked: dict[str, Any] = {}
-        if "thrower" in options:
-            checked["thrower"] = {k: float(v) for k, v in thrower.items()}
-        if "overrides" in options:
-            checked["overrides"] = dict(overrides)
-        return checked
 
     def _set_scene(self, config: SceneConfig, family: NetFamily | None = None) -> None:
         """Simulate ``config`` from now on (a member of ``family``, nets drawn per episode, if

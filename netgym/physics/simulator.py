@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -30,6 +29,7 @@ from netgym.physics.outcomes import CaptureRule, capture_rule
 from netgym.physics.frames import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
+from netgym.physics.recent import Recent
 from netgym.physics.stability import NetModes, net_modes, stable_dt
 from netgym.physics.stepping import new_counters
 
@@ -79,28 +79,9 @@ class Checkpoint:
     counters: np.ndarray
 
 
-class _Recent(OrderedDict):
-    """A dict that keeps only its ``size`` most recently stored or read entries (scenes drawn
-    per episode would otherwise grow the caches without end)."""
-
-    def __init__(self, size: int) -> None:
-        super().__init__()
-        self.size = size
-
-    def __getitem__(self, key: Any) -> Any:
-        self.move_to_end(key)
-        return super().__getitem__(key)
-
-    def __setitem__(self, key: Any, value: Any) -> None:
-        super().__setitem__(key, value)
-        self.move_to_end(key)
-        while len(self) > self.size:
-            self.popitem(last=False)
-
-
 CACHED_NETS = 64              # settled nets and net modes kept per process
-_SETTLED: _Recent = _Recent(CACHED_NETS)
-_MODES: _Recent = _Recent(CACHED_NETS)
+_SETTLED: Recent = Recent(CACHED_NETS)
+_MODES: Recent = Recent(CACHED_NETS)
 
 
 class Simulator:
