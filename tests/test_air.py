@@ -10,11 +10,12 @@ import pytest
 
 from netgym.bench.fast_path import compare, summarise
 from netgym.bench.throws import sample_throws
-from netgym import launch
 from netgym.config import ConfigError, load_scene
 from netgym.physics import air, flight
 from netgym.physics.model import ball_drag_constant
+from netgym.physics.flight import Ground
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import FreeFlight
 
 GROUND = dict(radius=0.3, restitution=0.5, friction=0.3, threshold=0.2)
 CALM = np.zeros(3)
@@ -117,17 +118,23 @@ def test_flight_path_without_drag_is_the_parabola_until_it_lands() -> None:
 
 def test_shaped_reward_distance_follows_the_air_and_the_wind() -> None:
     """A throw that falls short of the opening in still air comes closer with a tailwind, and
-    further with a headwind; with vanishing drag the distance is the parabola's."""
+    further with a headwind; without air the distance is the parabola's, found in closed form
+    (it lands short of the opening's near edge: the distance from its landing point's height)."""
     sim = Simulator("basket")
-    opening, r = sim.opening, sim.model.ball_radius
+    opening, r, g = sim.opening, sim.model.ball_radius, sim.model.gravity
     position, velocity = np.array([-5.0, 0.0, 1.8]), np.array([3.0, 0.0, 6.0])  # lands about 1 m short
-    parabola = launch.opening_miss_distance(position, velocity, opening, -9.81, r)
-    assert launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=1e-12) == pytest.approx(
-        parabola, abs=2e-3)
-    still = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05)
-    tail = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05, wind=np.array([3.0, 0, 0]))
-    head = launch.opening_miss_distance(position, velocity, opening, -9.81, r, drag=0.05, wind=np.array([-3.0, 0, 0]))
-    assert parabola < still and tail < still < head
+
+    def miss(drag: float, wind: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> float:
+        flight = FreeFlight(Ground(r, g, 0.0, 0.0, 0.0), drag, np.array(wind))
+        return flight.miss_distance(opening, position, velocity, 10.0)
+
+    t = np.linspace(0.0, 2.0, 200_001)[:, None]  # the parabola, densely, until well past its landing
+    points = position + velocity * t + 0.5 * np.array([0.0, 0.0, g]) * t * t
+    landed = np.argmax(points[:, 2] < r)
+    exact = opening.distance(points[:landed + 1]).min()
+    parabola, still = miss(0.0), miss(0.05)
+    assert parabola == pytest.approx(exact, abs=0.02)  # sampled every MEASURE_STEP, to its first point under r
+    assert parabola < still and miss(0.05, (3.0, 0.0, 0.0)) < still < miss(0.05, (-3.0, 0.0, 0.0))
 
 
 def test_wind_power_bound_holds_for_any_velocity() -> None:

@@ -18,12 +18,12 @@ from netgym.envs.observation import ObservationIndex
 from netgym.envs.reset_options import checked_reset_options
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
-from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
+from netgym.launch import Thrower, action_to_launch, launch_velocity, sample_thrower
 from netgym.physics.frames import Film, FrameClock
 from netgym.physics.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
 from netgym.physics.pause import Pause, pause
-from netgym.physics.throw import ThrowResult, throw
+from netgym.physics.throw import FreeFlight, ThrowResult, throw
 from netgym.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
@@ -345,9 +345,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     def _shaping(self, launch: np.ndarray, velocity: np.ndarray) -> float:
         """A miss's reward in ``shaped`` mode: SHAPED_MAX x exp(-d / SHAPED_SCALE), ``d`` the
         closest distance between the ball's free flight and the opening."""
-        m = self.sim.model
-        miss = opening_miss_distance(launch, velocity, self.sim.opening, m.gravity, m.ball_radius,
-                                     drag=m.ball_drag, wind=m.wind)
+        miss = FreeFlight.of(self.sim.model).miss_distance(self.sim.opening, launch, velocity,
+                                                           self.sim.config.simulation.time_limit)
         return SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
 
     def _feedback(self, launch: np.ndarray, velocity: np.ndarray, captured: bool) -> None:

@@ -3,7 +3,10 @@
 Without air the flight is closed form (:mod:`netgym.physics.flight`: arcs, bounces, sliding);
 through air it is integrated (:mod:`netgym.physics.air`: RK4 steps, the same bounce). The fast
 path asks it where the ball is after a while, whether it can still come into a box, and how
-long it certainly takes to travel a distance.
+long it certainly takes to travel a distance; the environment asks how close a throw's flight
+came to the opening (the shaped reward) and where it crossed the opening's plane (the
+feedback), both measured on its flight from the launch to the ground in steps of
+:data:`MEASURE_STEP`.
 """
 
 from __future__ import annotations
@@ -14,6 +17,9 @@ import numpy as np
 
 from netgym.physics import air, approach, flight
 from netgym.physics.model import Model
+from netgym.physics.opening import Opening
+
+MEASURE_STEP = 2e-3  # s: step of the flights the shaped reward and the feedback are measured on
 
 
 @dataclass(frozen=True)
@@ -70,3 +76,22 @@ class FreeFlight:
     def landing_time(self, p: np.ndarray, v: np.ndarray) -> float:
         """Time until the ball's lowest point first reaches the ground (its parabola)."""
         return flight.ground_time(p, v, self.ground)
+
+    def miss_distance(self, opening: Opening, p: np.ndarray, v: np.ndarray, t_max: float) -> float:
+        """Closest distance between the ``opening`` rectangle and the ball's flight from ``p``,
+        ``v`` until its lowest point first reaches the ground (or ``t_max``), the net and the
+        poles ignored: how close a throw came."""
+        points = air.flight_path(_vector(p), _vector(v), self.ground.gravity, self.drag, self.wind,
+                                 self.ground.radius, MEASURE_STEP, t_max)
+        return float(opening.distance(points).min())
+
+    def plane_crossing(self, plane: air.Plane, p: np.ndarray, v: np.ndarray, t_max: float) -> tuple[np.ndarray, bool]:
+        """Where the ball's flight from ``p``, ``v`` (until the ground or ``t_max``) crosses
+        ``plane`` the way it points, and True; else the point of it nearest the plane, and False."""
+        return air.plane_crossing(_vector(p), _vector(v), plane, self.ground.gravity, self.drag, self.wind,
+                                  self.ground.radius, MEASURE_STEP, t_max)
+
+
+def _vector(x: np.ndarray) -> np.ndarray:
+    """``x`` as the float64 3-vector the kernels take."""
+    return np.asarray(x, dtype=np.float64)
