@@ -25,7 +25,7 @@ def test_a_ball_far_from_the_net_flies_the_exact_parabola(basket: Simulator) -> 
     gravity = np.array([0.0, 0.0, basket.model.gravity])
     assert t == pytest.approx(300 * basket.dt, rel=1e-12)
     assert np.allclose(basket.ball_positions[0], x0 + v0 * t + 0.5 * gravity * t ** 2, rtol=0.0, atol=1e-12)
-    assert np.allclose(basket.ball_velocities[0], v0 + gravity * t, rtol=0.0, atol=1e-12)
+    assert np.allclose(basket.state.v[basket.model.n_net], v0 + gravity * t, rtol=0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize(("particle", "particle_speed", "expected"), [

@@ -169,11 +169,6 @@ class Simulator:
         return self.state.x[self.model.n_net:].copy()
 
     @property
-    def ball_velocities(self) -> np.ndarray:
-        """(n_balls, 3) ball velocities (a copy)."""
-        return self.state.v[self.model.n_net:].copy()
-
-    @property
     def substeps(self) -> int:
         """Integration substeps taken since construction."""
         return int(self.counters[0]["substeps"])
