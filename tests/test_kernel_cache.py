@@ -30,13 +30,16 @@ def value():
 RUN = "from pathlib import Path; import pkg.kernel_cache as c; {}from pkg.caller import call; print(call())"
 
 
-def _write_package(root: Path, returned: int) -> Path:
+def _write_package(root: Path, returned: int, room: str = "") -> Path:
+    """A package with a cached caller and its callee, the callee in the subfolder ``room`` if given."""
     pkg = root / "pkg"
-    pkg.mkdir(exist_ok=True)
+    (pkg / room).mkdir(parents=True, exist_ok=True)
     (pkg / "__init__.py").write_text("")
+    (pkg / room / "__init__.py").write_text("")
     (pkg / "kernel_cache.py").write_text(Path(__file__).parents[1].joinpath("netgym/physics/kernel_cache.py").read_text())
-    (pkg / "caller.py").write_text(textwrap.dedent(CALLER))
-    (pkg / "callee.py").write_text(textwrap.dedent(CALLEE.format(returned)))
+    callee = ".".join(["pkg", *([room] if room else []), "callee"])
+    (pkg / "caller.py").write_text(textwrap.dedent(CALLER).replace("pkg.callee", callee))
+    (pkg / room / "callee.py").write_text(textwrap.dedent(CALLEE.format(returned)))
     return pkg
 
 
@@ -67,6 +70,15 @@ def test_the_guard_recompiles_every_kernel_after_any_source_change(tmp_path: Pat
     assert _call(tmp_path, guarded=True) == "1"  # ... and an unchanged package keeps them
     assert sorted(p.name for p in (pkg / "__pycache__").glob("*.nb[ic]")) == cached
     _write_package(tmp_path, 2)
+    assert _call(tmp_path, guarded=True) == "2"
+
+
+def test_the_guard_covers_kernels_in_subfolders(tmp_path: Path) -> None:
+    """A callee in a room of the package, changed: its caller in the package's top recompiles."""
+    _write_package(tmp_path, 1, room="kernels")
+    assert _call(tmp_path, guarded=True) == "1"
+    _write_package(tmp_path, 2, room="kernels")
+    assert _call(tmp_path, guarded=False) == "1"  # the hazard across folders too
     assert _call(tmp_path, guarded=True) == "2"
 
 
