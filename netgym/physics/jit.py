@@ -3,7 +3,7 @@
 Kernels are cached on disk and use numpy's floating-point error model: a division by zero
 gives inf or nan (which the divergence checks catch) instead of raising, so numba emits no
 zero check before every division. Where no division by zero happens, results are bitwise the
-same as with Python's error model; the hot loops run about a fifth faster.
+same as with Python's error model, and the hot loops run faster (docs/BENCHMARKS.md).
 """
 
 from __future__ import annotations

@@ -104,8 +104,7 @@ def at_rest(rest, x, row, time):
     """The ball in ``row`` and the bodies near it moved no coordinate by ``bound`` or more
     between any check of the :class:`RestWindow` (which covers the whole window) and ``x``
     now. Positions, not velocities: a light net under a resting ball keeps a velocity jitter
-    of the order of its acceleration x dt (2.8 cm/s on the goal's roof at 0.5 ms) while
-    nothing moves."""
+    of the order of its acceleration x dt while nothing moves."""
     capacity = rest.times.shape[0]
     first, count = rest.ring[0], rest.ring[1]
     if time - rest.times[first] < rest.window - rest.epsilon:
