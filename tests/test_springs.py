@@ -7,13 +7,14 @@ import math
 import numpy as np
 import pytest
 
-from netgym.physics import forces
+from netgym.physics import forces, spring_law
 from netgym.physics.simulator import Simulator
 from netgym.physics.springs import Springs
 
 
 def _serial_spring_forces(x, v, pairs, params, f) -> None:
-    """The textbook loop: each spring in the given order adds its force to both ends."""
+    """The textbook loop: each spring in the given order adds its force (the law, not its
+    grouping, from :mod:`~netgym.physics.spring_law`) to both ends."""
     for (i, j), (rest, ks, kd) in zip(pairs.tolist(), params.tolist()):
         d = [x[i, c] - x[j, c] for c in range(3)]
         length = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
@@ -22,7 +23,7 @@ def _serial_spring_forces(x, v, pairs, params, f) -> None:
         inv = 1.0 / length
         u = [d[c] * inv for c in range(3)]
         closing = (v[i, 0] - v[j, 0]) * u[0] + (v[i, 1] - v[j, 1]) * u[1] + (v[i, 2] - v[j, 2]) * u[2]
-        mag = -ks * (length - rest) - kd * closing
+        mag = spring_law.tension.py_func(length, rest, ks, kd, closing)
         for c in range(3):
             f[i, c] += mag * u[c]
             f[j, c] -= mag * u[c]
@@ -103,3 +104,24 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenera
 def test_springs_of_rejects_bad_pairs_by_name(pairs, params, message) -> None:
     with pytest.raises(ValueError, match=message):
         Springs.of(np.array(pairs), np.array(params), 4)
+
+
+def test_the_spring_law_is_hookes_law_with_a_damper_along_the_axis() -> None:
+    """A 2 m spring of rest length 1.5 m, ks 100 N/m pulls its ends together with 50 N; at rest
+    length it pulls with nothing; closing at 0.3 m/s its 4 N s/m damper pushes them apart by 1.2 N."""
+    law = spring_law
+    assert law.tension.py_func(2.0, 1.5, 100.0, 0.0, 0.0) == pytest.approx(-50.0)
+    assert law.tension.py_func(1.5, 1.5, 100.0, 4.0, 0.0) == 0.0
+    assert law.tension.py_func(1.5, 1.5, 100.0, 4.0, -0.3) == pytest.approx(1.2)
+
+
+def test_the_spring_force_is_minus_the_gradient_of_its_energy() -> None:
+    """Central differences of the energy along the axis give the elastic tension, at stretched and
+    compressed lengths; across the axis the stiffness over ks is 1 - L / l when stretched, as the
+    tension's turning of the axis gives (force / length), and 0 when compressed."""
+    law, rest, ks, h = spring_law, 1.5, 100.0, 1e-6
+    for length in (1.2, 1.5, 2.0, 3.7):
+        gradient = (law.energy.py_func(length + h, rest, ks) - law.energy.py_func(length - h, rest, ks)) / (2 * h)
+        assert -gradient == pytest.approx(law.elastic_tension.py_func(length, rest, ks), abs=1e-6)
+    assert law.stretch.py_func(2.0, 1.5) == pytest.approx(-law.elastic_tension.py_func(2.0, 1.5, ks) / (ks * 2.0))
+    assert law.stretch.py_func(1.2, 1.5) == 0.0 and law.stretch.py_func(0.0, 1.5) == 0.0

@@ -1,14 +1,14 @@
 """Smooth forces: springs with dampers along them, and gravity. numba kernels over flat arrays.
 
-A spring between particles i and j with ``d = x_i - x_j``, ``l = |d|``, ``u = d / l`` pushes i
-with ``-(ks (l - L) + kd (v_i - v_j) . u) u`` and j with the opposite force. Air drag
-``-drag * m * v`` acts on every free body.
+Each spring pushes its ends by :mod:`~netgym.physics.spring_law`; air drag ``-drag * m * v``
+acts on every free body.
 """
 
 from __future__ import annotations
 
 import math
 
+from netgym.physics import spring_law
 from netgym.physics.jit import inline_kernel, kernel
 
 
@@ -67,7 +67,7 @@ def _dense_group_forces(positions, velocities, params, out, offset, first, lengt
         uz = dz * inv
         closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
                    + (velocities[2, i] - velocities[2, j]) * uz)
-        mag = -ks * (length_ij - params[0, s]) - kd * closing
+        mag = spring_law.tension(length_ij, params[0, s], ks, kd, closing)
         exists = (params[1, s] != 0.0) & (length_ij > 1e-12)
         fx = mag * ux
         fy = mag * uy
@@ -120,7 +120,7 @@ def spring_forces(x, v, springs, f):
                 continue
             closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
                        + (velocities[2, i] - velocities[2, j]) * uz)
-            mag = -params[s, 1] * (length_ij - params[s, 0]) - params[s, 2] * closing
+            mag = spring_law.tension(length_ij, params[s, 0], params[s, 1], params[s, 2], closing)
             sparse[0, s], sparse[1, s], sparse[2, s], sparse[3, s] = mag * ux, mag * uy, mag * uz, 1.0
             totals[0, j] -= sparse[0, s]
             totals[1, j] -= sparse[1, s]
@@ -182,5 +182,5 @@ def energies(x, v, inv_mass, gravity, springs, params):
         i = springs[s, 0]
         j = springs[s, 1]
         length = math.sqrt((x[i, 0] - x[j, 0]) ** 2 + (x[i, 1] - x[j, 1]) ** 2 + (x[i, 2] - x[j, 2]) ** 2)
-        potential_s += 0.5 * params[s, 1] * (length - params[s, 0]) ** 2
+        potential_s += spring_law.energy(length, params[s, 0], params[s, 1])
     return kinetic, potential_s, potential_g

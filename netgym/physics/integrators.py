@@ -29,6 +29,7 @@ import numpy as np
 from numba.core.errors import NumbaTypeError
 from numba.extending import overload
 
+from netgym.physics import spring_law
 from netgym.physics.forces import accelerations, spring_axis, spring_forces
 from netgym.physics.jit import inline_kernel, kernel
 from netgym.physics.kinds import Integrator
@@ -122,7 +123,7 @@ def step_imex_euler(x, v, inv_mass, gravity, drag, springs, dt, scratch):
         i = pairs[s, 0]
         j = pairs[s, 1]
         length, ux, uy, uz = spring_axis(x, i, j)
-        mag = -params[s, 1] * (length - params[s, 0])
+        mag = spring_law.elastic_tension(length, params[s, 0], params[s, 1])
         add_pair_force(a, i, j, mag * ux, mag * uy, mag * uz)
         coef[s, 0], coef[s, 1], coef[s, 2] = ux, uy, uz
     if scratch.coef_dt[0] != dt:
@@ -252,8 +253,7 @@ def _implicit_system(x, v, inv_mass, gravity, drag, springs, dt, work, coef):
         j = pairs[s, 1]
         length, ux, uy, uz = spring_axis(x, i, j)
         ks, kd = params[s, 1], params[s, 2]
-        stretch = 1.0 - params[s, 0] / length if length > 1e-12 else 0.0
-        iso = dt * dt * ks * max(stretch, 0.0)
+        iso = dt * dt * ks * spring_law.stretch(length, params[s, 0])
         axial = dt * dt * ks + dt * kd - iso
         coef[s, 0], coef[s, 1], coef[s, 2], coef[s, 3], coef[s, 4] = ux, uy, uz, iso, axial
         for c, uc in ((0, ux), (1, uy), (2, uz)):

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from netgym.physics import spring_law
 from netgym.physics.integrators import damper_share, sweep_dampers
 from netgym.physics.jit import kernel
 from netgym.physics.kinds import Integrator
@@ -56,6 +57,13 @@ def _scatter(n: int, springs: np.ndarray, pair_force: np.ndarray) -> np.ndarray:
         out[:, c] = (np.bincount(springs[:, 0], pair_force[:, c], n)
                      - np.bincount(springs[:, 1], pair_force[:, c], n))
     return out
+
+
+@kernel
+def _stretches(length, rest, out):
+    """Each spring's :func:`~netgym.physics.spring_law.stretch` into ``out``."""
+    for s in range(length.shape[0]):
+        out[s] = spring_law.stretch(length[s], rest[s])
 
 
 @kernel
@@ -110,7 +118,8 @@ def net_modes(positions: np.ndarray, inv_mass: np.ndarray, springs: np.ndarray, 
     d = positions[springs[:, 0]] - positions[springs[:, 1]]
     length = np.linalg.norm(d, axis=1)
     u = d / length[:, None]
-    tension = np.maximum(1.0 - params[:, 0] / length, 0.0)
+    tension = np.empty(len(length))
+    _stretches(length, params[:, 0], tension)
     ks, kd = params[:, 1], params[:, 2]
     scale = np.sqrt(inv_mass)
     free = inv_mass > 0.0
