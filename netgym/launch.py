@@ -75,18 +75,3 @@ def launch_velocity(speed: float, elevation: float, azimuth: float, thrower: Thr
     ``azimuth`` offset (degrees, to the left of the direction to the opening's centre)."""
     theta, phi = math.radians(elevation), thrower.facing + math.radians(azimuth)
     return speed * np.array([math.cos(theta) * math.cos(phi), math.cos(theta) * math.sin(phi), math.sin(theta)])
-
-
-def action_to_velocity(action: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:
-    """Launch velocity (m/s) of an action in [-1, 1]^3 = (speed, elevation, azimuth offset)."""
-    return launch_velocity(*action_to_launch(action, cfg), thrower)
-
-
-def velocity_to_action(velocity: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:
-    """The action (unclipped) whose launch velocity is ``velocity``; inverse of
-    :func:`action_to_velocity` inside the ranges."""
-    speed = float(np.linalg.norm(velocity))
-    elevation = math.degrees(math.asin(velocity[2] / speed)) if speed > 0 else 0.0
-    heading = math.atan2(velocity[1], velocity[0]) - thrower.facing
-    offset = math.degrees(math.atan2(math.sin(heading), math.cos(heading)))
-    return np.array([from_range(speed, cfg.speed), from_range(elevation, cfg.elevation), from_range(offset, cfg.azimuth)])

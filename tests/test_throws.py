@@ -3,12 +3,14 @@ full simulation, and the simulator's input checks."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from netgym.launch import Thrower, action_to_velocity, sample_thrower, velocity_to_action
+from netgym.launch import Thrower, action_to_launch, launch_velocity, sample_thrower
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
 
@@ -29,7 +31,7 @@ def _launch(sim: Simulator, place: tuple[float, float, float], action: tuple[flo
     base = sample_thrower(cfg, sim.opening, rng)
     lerp = [lo + u * (hi - lo) for u, (lo, hi) in zip(place, (cfg.distance, cfg.bearing, cfg.height))]
     thrower = Thrower(distance=lerp[0], bearing=lerp[1], height=lerp[2], centre=base.centre)
-    return thrower.position, action_to_velocity(np.array(action), thrower, cfg)
+    return thrower.position, launch_velocity(*action_to_launch(np.array(action), cfg), thrower)
 
 
 unit = st.floats(0.0, 1.0)
@@ -54,15 +56,22 @@ def test_random_throws_are_finite_consistent_and_deterministic(scene: str, place
     assert np.array_equal(again.final_position, result.final_position)
 
 
-def test_action_and_velocity_are_inverse() -> None:
+def test_an_action_maps_linearly_onto_speed_elevation_and_azimuth() -> None:
+    """The launch velocity of an action has the speed, the elevation above the horizon and the
+    heading (offset from the direction to the opening's centre) that the action's entries map to
+    linearly from [-1, 1] onto the scene's ranges."""
     sim = _sim("basket")
     cfg = sim.config.throw
     thrower = sample_thrower(cfg, sim.opening, np.random.default_rng(3))
     action = np.array([0.3, -0.7, 0.2])
-    velocity = action_to_velocity(action, thrower, cfg)
-    assert np.allclose(velocity_to_action(velocity, thrower, cfg), action)
+    velocity = launch_velocity(*action_to_launch(action, cfg), thrower)
+    expected = [lo + (a + 1.0) / 2.0 * (hi - lo) for a, (lo, hi) in zip(action, (cfg.speed, cfg.elevation, cfg.azimuth))]
     speed = np.linalg.norm(velocity)
-    assert cfg.speed[0] <= speed <= cfg.speed[1]
+    to_centre = sim.opening.centre[:2] - thrower.position[:2]
+    heading = math.degrees(math.atan2(velocity[1], velocity[0]) - math.atan2(to_centre[1], to_centre[0]))
+    assert speed == pytest.approx(expected[0])
+    assert math.degrees(math.asin(velocity[2] / speed)) == pytest.approx(expected[1])
+    assert (heading + 180.0) % 360.0 - 180.0 == pytest.approx(expected[2])
 
 
 def test_a_throw_away_from_the_net_is_decided_in_closed_form() -> None:
