@@ -19,7 +19,7 @@ from typing import Any, Mapping
 
 from netgym.arguments import is_integer, is_real
 from netgym.errors import ConfigError
-from netgym.physics.kinds import Integrator
+from netgym.kinds import Integrator
 
 INTEGRATORS = Integrator.labels()
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.config import ThrowConfig
-from netgym.physics.opening import Opening
+from netgym.physics.model.opening import Opening
 
 
 LAUNCH_ENTRIES = (("speed", "launch speed", "m/s"), ("elevation", "elevation above the horizon", "degrees"),

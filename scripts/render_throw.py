@@ -27,8 +27,8 @@ from PIL import Image
 
 import netgym  # noqa: F401  (registers NetCatch-v0)
 from agents.policies import SB3_ALGORITHMS, load_policy
-from netgym.render import caption_frame
-from netgym.video import FORMATS, EpisodeFilm
+from netgym.view.render import caption_frame
+from netgym.view.video import FORMATS, EpisodeFilm
 
 
 def record(scene: str, seed: int, throws: int, policy: str, algorithm: str | None = None, settling: bool = True,

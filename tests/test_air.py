@@ -1,4 +1,4 @@
-"""Air on balls: quadratic drag towards the wind, in the fast path's flight (netgym.physics.air)
+"""Air on balls: quadratic drag towards the wind, in the fast path's flight (netgym.physics.kernels.air)
 and in the kernels, against analytic solutions, limits, symmetry and the full simulation."""
 
 from __future__ import annotations
@@ -11,9 +11,10 @@ import pytest
 from netgym.bench.fast_path import compare, summarise
 from netgym.bench.throws import sample_throws
 from netgym.config import ConfigError, load_scene
-from netgym.physics import air, flight
-from netgym.physics.model import ball_drag_constant
-from netgym.physics.flight import Ground
+from netgym.physics.kernels import air
+from netgym.physics.throw import flight
+from netgym.physics.model.model import ball_drag_constant
+from netgym.physics.throw.flight import Ground
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import FreeFlight
 

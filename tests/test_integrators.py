@@ -1,4 +1,4 @@
-"""The integrator kernels (``netgym/physics/integrators.py``) on a single undamped spring: a 1 kg
+"""The integrator kernels (``netgym/physics/kernels/integrators.py``) on a single undamped spring: a 1 kg
 particle on a spring to a fixed anchor, along the spring's axis, is the harmonic oscillator
 x(t) = L + A cos(w t), whose discretisations are known exactly: the order of each method's
 error, the per-step energy factor of explicit and implicit Euler (1 + (w h)^2 and its inverse),
@@ -12,11 +12,11 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from netgym.physics import integrators
-from netgym.physics.integrators import Scratch
-from netgym.physics.kinds import Integrator
-from netgym.physics.model import Settings
-from netgym.physics.springs import Springs
+from netgym.physics.kernels import integrators
+from netgym.physics.kernels.integrators import Scratch
+from netgym.kinds import Integrator
+from netgym.physics.model.model import Settings
+from netgym.physics.model.springs import Springs
 
 OMEGA = 2.0 * math.pi   # rad/s: a period of 1 s
 REST = 1.0              # m, the spring's rest length

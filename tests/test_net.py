@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from netgym.config import FACES, load_scene
-from netgym.physics.kinds import SpringKind
-from netgym.physics.net import build_net
+from netgym.kinds import SpringKind
+from netgym.physics.model.net import build_net
 from netgym.physics.simulator import Simulator
 
 STRUCTURAL, SHEAR, BENDING = SpringKind
@@ -158,10 +158,10 @@ def test_the_kernels_wavefront_order_of_springs_gives_bitwise_the_same_steps(int
     """The kernels loop over the springs in wavefront order, not memory order: a reordering that
     keeps the order of every two springs sharing a particle, so each particle sees the same
     updates in the same order. Steps of a disturbed net in both orders agree to the last bit."""
-    from netgym.physics.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler
-    from netgym.physics.kinds import Integrator
-    from netgym.physics.model import Model, Settings
-    from netgym.physics.springs import kernel_indices
+    from netgym.physics.kernels.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler
+    from netgym.kinds import Integrator
+    from netgym.physics.model.model import Model, Settings
+    from netgym.physics.model.springs import kernel_indices
 
     model = Model.from_config(load_scene("basket"))
     ordered = model.kernel.springs

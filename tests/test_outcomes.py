@@ -12,8 +12,8 @@ import pytest
 import netgym
 from agents.oracle import BallisticOracle
 from netgym.config import load_scene
-from netgym.physics.frames import Film, FrameClock
-from netgym.physics.opening import Opening
+from netgym.physics.film import Film, FrameClock
+from netgym.physics.model.opening import Opening
 from netgym.physics.outcomes import HeldRule, LineRule, Reason, capture_rule
 from netgym.physics.throw import TUNING
 

@@ -9,14 +9,15 @@ import numpy as np
 import pytest
 
 from netgym.errors import UnstableTimeStepError
-from netgym.physics import flight, stepping
-from netgym.physics.contacts import Materials, Poles
-from netgym.physics.integrators import Scratch
-from netgym.physics.kinds import Contact, Integrator
-from netgym.physics.model import KernelModel, Settings
-from netgym.physics.opening import Opening
+from netgym.physics.throw import flight
+from netgym.physics.kernels import stepping
+from netgym.physics.kernels.contacts import Materials, Poles
+from netgym.physics.kernels.integrators import Scratch
+from netgym.kinds import Contact, Integrator
+from netgym.physics.model.model import KernelModel, Settings
+from netgym.physics.model.opening import Opening
 from netgym.physics.simulator import Simulator
-from netgym.physics.springs import Springs
+from netgym.physics.model.springs import Springs
 
 # a small net hung high above the ground: it swings under gravity without touching anything
 LIFTED = {"net.particles": [5, 5, 6], "net.lower": [-1.0, -1.0, 5.0], "net.upper": [1.0, 1.0, 7.5]}
@@ -164,7 +165,7 @@ def _random_spring_graph(rng: np.random.Generator, n: int = 12, n_springs: int =
 
 
 def test_imex_dampers_only_remove_kinetic_energy_and_keep_momentum() -> None:
-    from netgym.physics.integrators import step_imex_euler
+    from netgym.physics.kernels.integrators import step_imex_euler
 
     rng = np.random.default_rng(3)
     for _ in range(20):
@@ -186,7 +187,7 @@ def test_imex_shares_are_computed_again_for_another_step_and_after_implicit_eule
     """IMEX Euler keeps its damper shares (which depend on dt alone) between steps of one size: a
     scratch that last stepped at another dt, or that implicit Euler used since, steps bitwise as
     a fresh one does."""
-    from netgym.physics.integrators import step_imex_euler, step_implicit_euler
+    from netgym.physics.kernels.integrators import step_imex_euler, step_implicit_euler
 
     rng = np.random.default_rng(5)
     x, springs = _random_spring_graph(rng)
@@ -211,7 +212,7 @@ def test_imex_shares_are_computed_again_for_another_step_and_after_implicit_eule
 
 
 def test_imex_damper_of_one_spring_is_two_backward_euler_half_steps() -> None:
-    from netgym.physics.integrators import step_imex_euler
+    from netgym.physics.kernels.integrators import step_imex_euler
 
     x = np.array([[0.0, 0.0, 0.0], [0.6, 0.8, 0.0]])
     v = np.array([[0.3, -0.2, 0.5], [-1.0, 0.4, 0.1]])
@@ -247,7 +248,7 @@ def _one_damped_spring(ks: float, kd: float, mass: float) -> tuple[np.ndarray, n
 def _spectral_radius_of_the_imex_step(x, inv_mass, springs, params, dt) -> float:
     """Spectral radius of the Jacobian of the IMEX Euler kernel's step (free particle's position
     and velocity) about rest, by central differences."""
-    from netgym.physics.integrators import step_imex_euler
+    from netgym.physics.kernels.integrators import step_imex_euler
 
     def step(state: np.ndarray) -> np.ndarray:
         xs, vs = x.copy(), np.zeros_like(x)
@@ -266,7 +267,7 @@ def test_imex_stability_limit_of_one_damped_spring_is_analytic_and_the_kernels()
     h^2 omega^2 g < 2 (1 + g), g = 1 / (1 + h kd w / 2)^2, a quadratic in h. The estimate finds
     its root, far beyond the elastic limit 2 / omega, and the kernel's own step matrix turns
     unstable there."""
-    from netgym.physics.stability import net_modes
+    from netgym.physics.model.stability import net_modes
 
     ks, kd, mass = 1500.0, 50.0, 2.0
     x, inv_mass, springs, params = _one_damped_spring(ks, kd, mass)

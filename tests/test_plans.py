@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from netgym.errors import SimulationDivergedError
-from netgym.physics.kinds import Integrator
+from netgym.kinds import Integrator
 from netgym.physics.plans import Integrate, Plan, Tick, drive
 from netgym.physics.simulator import Simulator
 

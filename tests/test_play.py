@@ -14,7 +14,7 @@ os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 
 from netgym.physics.simulator import Simulator  # noqa: E402
 from netgym.play import STEP, Play  # noqa: E402
-from netgym.render import Renderer  # noqa: E402
+from netgym.view.render import Renderer  # noqa: E402
 
 DISPLAY_VARIABLES = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 
 from netgym.config import load_scene
-from netgym.physics.contacts import Materials
+from netgym.physics.kernels.contacts import Materials
 from netgym.physics.integration import RestTest
-from netgym.physics.kinds import Contact
-from netgym.physics.model import Model
+from netgym.kinds import Contact
+from netgym.physics.model.model import Model
 
 
 def test_each_contact_kind_has_its_material_by_name() -> None:

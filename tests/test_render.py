@@ -13,7 +13,7 @@ import netgym  # noqa: F401
 from agents.oracle import BallisticOracle
 from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
-from netgym.physics.frames import Film, FrameClock
+from netgym.physics.film import Film, FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
 
@@ -63,8 +63,8 @@ def test_the_camera_follows_a_high_throw_to_the_net(scene: str) -> None:
     """The frames of a throw frame its whole flight up to the net: a lob at the top speed and
     elevation of the scene's ranges from the farthest thrower stays in the picture (with the
     thrower) until it is past the net."""
-    from netgym.framing import thrower_figure
-    from netgym.render import throw_camera
+    from netgym.view.framing import thrower_figure
+    from netgym.view.render import throw_camera
 
     env = gym.make("NetCatch-v0", scene=scene, render_mode="replay_list").unwrapped
     t = env.scene.throw
@@ -88,8 +88,8 @@ def test_the_camera_follows_a_high_throw_to_the_net(scene: str) -> None:
 def test_captions_name_the_throw_and_its_outcome_once_decided() -> None:
     """EpisodeFilm captions every frame of a throw with its number, and with its outcome from
     the frame of its decision on; it holds the last frame; caption_frame writes the text."""
-    from netgym.render import caption_frame
-    from netgym.video import HOLD, EpisodeFilm
+    from netgym.view.render import caption_frame
+    from netgym.view.video import HOLD, EpisodeFilm
 
     fps = NetCatchEnv.metadata["render_fps"]
     film = EpisodeFilm(2, fps)

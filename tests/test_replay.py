@@ -15,8 +15,8 @@ import pytest
 
 import netgym  # noqa: F401
 from agents.oracle import BallisticOracle
-from netgym.replay import Snapshot
-from netgym.video import write_video
+from netgym.view.replay import Snapshot
+from netgym.view.video import write_video
 from netgym.wrappers import RecordEpisodeVideo
 
 pytest.importorskip("plotly")
@@ -122,7 +122,7 @@ def test_page_shows_the_net_in_a_browser(page: Path, tmp_path: Path) -> None:
     """Opened from a file:// URL with no network, the page draws the 3D scene: the sky-coloured
     scene, the dark net strings in its middle, the red poles, the green ground; the scene fills
     the window to its edge (no margin, no scrollbar)."""
-    from netgym.replay_page import GROUND_COLOUR, NET_COLOUR, POLE_COLOUR, SKY_COLOUR
+    from netgym.view.replay_page import GROUND_COLOUR, NET_COLOUR, POLE_COLOUR, SKY_COLOUR
 
     image = screenshot(page, tmp_path / "replay.png")
     scene = image[80:540, 20:980]

@@ -7,14 +7,14 @@ import math
 import numpy as np
 import pytest
 
-from netgym.physics import forces, spring_law
+from netgym.physics.kernels import forces, spring_law
 from netgym.physics.simulator import Simulator
-from netgym.physics.springs import Springs
+from netgym.physics.model.springs import Springs
 
 
 def _serial_spring_forces(x, v, pairs, params, f) -> None:
     """The textbook loop: each spring in the given order adds its force (the law, not its
-    grouping, from :mod:`~netgym.physics.spring_law`) to both ends."""
+    grouping, from :mod:`~netgym.physics.kernels.spring_law`) to both ends."""
     for (i, j), (rest, ks, kd) in zip(pairs.tolist(), params.tolist()):
         d = [x[i, c] - x[j, c] for c in range(3)]
         length = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])

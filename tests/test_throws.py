@@ -134,7 +134,7 @@ def test_remove_ball_checks_its_index() -> None:
 
 
 def test_clearance_is_the_distance_to_the_nearest_obstacle() -> None:
-    from netgym.physics.contacts import clearance
+    from netgym.physics.kernels.contacts import clearance
 
     sim = _sim("basket")
     m = sim.model
@@ -180,7 +180,7 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
     every segment gives (an unbounded extent lists every particle), on the states of a fast ball
     hitting a loaded basket: resting balls, impacts, and impacts that move the bodies so far that
     the list is abandoned mid-way."""
-    from netgym.physics import contacts
+    from netgym.physics.kernels import contacts
 
     sim = _sim("basket")
     for x in (-0.4, 0.3):

@@ -64,7 +64,7 @@ DESIGN_ITEMS = (
     "- A compiled decision loop: integration chunks and the checks after each run in one kernel call, which hands "
     "back to Python only when something could be decided (`watch.integrate_watched`): 2.1 Python decisions per "
     "shipped-PPO throw, against 11.7 with a Python check after every 10 ms chunk.",
-    "- The spring kernels: springs in wavefront order (`netgym.physics.springs.wavefront_order`), the force pass "
+    "- The spring kernels: springs in wavefront order (`netgym.physics.model.springs.wavefront_order`), the force pass "
     "over springs grouped by index offset on cache-line-aligned columns (`tests/test_springs.py`), IMEX Euler's "
     "damper shares computed once per step size, unsigned 32-bit indices, numpy's floating-point error model (no "
     "zero check before each division). Each leaves every result bitwise the same (the golden episodes, "
@@ -192,7 +192,7 @@ VARIANT_SPEED_NOTES = (
     "the wind's energy allowance (setting the allowance to zero left the substeps of 30 windy oracle episodes "
     "within 1%), is where the windy and noisy episodes spend their time. Resets are cheap everywhere: a new wind "
     "shares the net and its kernel arrays, and a randomized net comes from its family "
-    "(`netgym/physics/net_family.py`): settled from scratch at five stiffnesses once per process and "
+    "(`netgym/physics/model/net_family.py`): settled from scratch at five stiffnesses once per process and "
     "interpolated, its stability taken from the drawn springs' corners.")
 
 CONTACT_CONVERGENCE_TEXT = (

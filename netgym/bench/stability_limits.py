@@ -10,7 +10,7 @@ import numpy as np
 from netgym.config import INTEGRATORS
 from netgym.errors import SimulationDivergedError
 from netgym.physics.simulator import Simulator
-from netgym.physics.stability import stable_dt
+from netgym.physics.model.stability import stable_dt
 
 
 def _stable(integrator: str, dt: float, overrides: dict, seconds: float, sim_cache: dict) -> bool:

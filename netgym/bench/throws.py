@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from netgym.launch import action_to_velocity, sample_thrower
+from netgym.launch import action_to_launch, launch_velocity, sample_thrower
 from netgym.physics.simulator import Simulator
 
 if TYPE_CHECKING:
@@ -38,5 +38,5 @@ def sample_throws(scene: str, count: int, seed: int = 0) -> list[Throw]:
             action = oracle.action(thrower.distance, thrower.height - centre_z) + rng.normal(0.0, 0.15, 3)
         else:
             action = rng.uniform(-1.0, 1.0, 3)
-        throws.append((thrower.position, action_to_velocity(np.clip(action, -1, 1), thrower, sim.config.throw)))
+        throws.append((thrower.position, launch_velocity(*action_to_launch(np.clip(action, -1, 1), sim.config.throw), thrower)))
     return throws

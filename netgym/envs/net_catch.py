@@ -19,12 +19,12 @@ from netgym.envs.reset_options import checked_reset_options
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
 from netgym.launch import Thrower, action_to_launch, launch_velocity, sample_thrower
-from netgym.physics.frames import Film, FrameClock
-from netgym.physics.net_family import NetFamily, family_of
+from netgym.physics.film import Film, FrameClock
+from netgym.physics.model.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
 from netgym.physics.pause import Pause, pause
 from netgym.physics.throw import FreeFlight, ThrowResult, throw
-from netgym.replay import Scenery, Snapshot
+from netgym.view.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
 FILMED_MODES = ("human", "rgb_array_list", "replay_list")   # render modes that take every frame of a throw
@@ -109,7 +109,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``dt`` | scene's | integration step (s) |
     | ``balls_per_episode`` | 3 | throws per episode |
     | ``reward_mode`` | ``"sparse"`` | ``"sparse"`` or ``"shaped"`` |
-    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"``, ``"replay_list"`` (3D positions instead of pixels: :mod:`netgym.replay`) |
+    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"``, ``"replay_list"`` (3D positions instead of pixels: :mod:`netgym.view.replay`) |
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
     | ``render_settling`` | False | ``rgb_array_list``/``human``: also film the net settling between throws |
@@ -381,7 +381,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     # ------------------------------------------------------------------ rendering
     def _get_renderer(self):
         if self._renderer is None:
-            from netgym.render import Renderer
+            from netgym.view.render import Renderer
 
             self._renderer = Renderer(self.sim, human=self.render_mode == "human", fps=self.metadata["render_fps"])
         return self._renderer
@@ -410,7 +410,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def render(self) -> np.ndarray | list[np.ndarray] | list[Snapshot] | None:
         """``rgb_array``: the current frame (H, W, 3) uint8; ``rgb_array_list``: the frames since
-        the last render or reset; ``replay_list``: the :class:`~netgym.replay.Snapshot` of each of
+        the last render or reset; ``replay_list``: the :class:`~netgym.view.replay.Snapshot` of each of
         those instants; ``human``: shows the current frame, returns None. Frames show the current
         thrower and follow the throw being simulated."""
         if self.render_mode is None:

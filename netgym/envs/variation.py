@@ -12,7 +12,7 @@ import numpy as np
 from netgym.arguments import is_real
 from netgym.config import SceneConfig
 from netgym.errors import InvalidArgumentError
-from netgym.physics import air
+from netgym.physics.kernels import air
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw.free_flight import FreeFlight
 

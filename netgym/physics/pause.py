@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 from netgym.physics.plans import Plan
 
 if TYPE_CHECKING:

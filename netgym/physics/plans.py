@@ -7,7 +7,7 @@ could decide), :class:`Relax` (relax for at most this many steps, until a rest t
 or :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
 requests of a simulator's plan, one integration call per :class:`Integrate` (one per piece
-between frame instants when it films, with a :class:`~netgym.physics.frames.Film`), and throws
+between frame instants when it films, with a :class:`~netgym.physics.film.Film`), and throws
 a divergence back into the plan.
 """
 
@@ -17,11 +17,11 @@ from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any, Protocol, Union
 
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 
 from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, integrate_watched, relax
-from netgym.physics.model import KernelModel, Settings
-from netgym.physics.watch import Watch
+from netgym.physics.model.model import KernelModel, Settings
+from netgym.physics.kernels.watch import Watch
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
 
@@ -38,7 +38,7 @@ class Integrate:
 @dataclass(frozen=True)
 class Watched:
     """Request: integrate chunk after chunk of ``watch.chunk`` steps of ``dt`` with
-    ``integrator`` until the :class:`~netgym.physics.watch.Watch` sees something that could be
+    ``integrator`` until the :class:`~netgym.physics.kernels.watch.Watch` sees something that could be
     decided (not for a filmed plan: a film needs every chunk)."""
 
     integrator: int

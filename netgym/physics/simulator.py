@@ -20,18 +20,18 @@ import numpy as np
 from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import AirConfig, SceneConfig, load_scene
 from netgym.errors import InvalidArgumentError, NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
-from netgym.physics.forces import energies
+from netgym.physics.kernels.forces import energies
 from netgym.physics.integration import RestTest, Workspace
-from netgym.physics.kinds import Integrator
-from netgym.physics.model import KernelModel, Model, Settings, State
-from netgym.physics.opening import Opening
+from netgym.kinds import Integrator
+from netgym.physics.model.model import KernelModel, Model, Settings, State
+from netgym.physics.model.opening import Opening
 from netgym.physics.outcomes import CaptureRule, capture_rule
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
 from netgym.physics.recent import Recent
-from netgym.physics.stability import NetModes, net_modes, stable_dt
-from netgym.physics.stepping import new_counters
+from netgym.physics.model.stability import NetModes, net_modes, stable_dt
+from netgym.physics.kernels.stepping import new_counters
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
 SETTLE_STABILITY_SHARE = 0.9  # the pause steps at most this share of its integrator's linear stability limit
@@ -63,7 +63,7 @@ class Energy:
 class PreparedNet:
     """What a simulator would otherwise work out for its net: its settled ``positions`` and the
     ``modes`` of the net at its own inertia and ``settle_modes`` at the pause's (for nets drawn
-    per episode, see :mod:`~netgym.physics.net_family`)."""
+    per episode, see :mod:`~netgym.physics.model.net_family`)."""
 
     positions: np.ndarray
     modes: NetModes

@@ -13,7 +13,7 @@ import warnings
 from collections.abc import Callable
 from typing import Any
 
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw.free_flight import FreeFlight
 from netgym.physics.throw.recipe import Throw, throw, throw_plan

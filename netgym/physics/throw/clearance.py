@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from netgym.physics import approach, contacts
-from netgym.physics.surroundings import survey
+from netgym.physics.throw import approach
+
+from netgym.physics.kernels import contacts
+from netgym.physics.kernels.surroundings import survey
 from netgym.physics.throw.records import TUNING, ThrowContext
 
 

@@ -17,11 +17,11 @@ import math
 
 import numpy as np
 
-from netgym.physics import stepping
+from netgym.physics.kernels import stepping
 from netgym.physics.outcomes import Reason
 from netgym.physics.throw.clearance import flight_time
 from netgym.physics.throw.records import TUNING, ThrowContext
-from netgym.physics.watch import near_check
+from netgym.physics.kernels.watch import near_check
 
 
 def rule_decision(throw: ThrowContext, position: np.ndarray, entered: bool) -> Reason | None:
@@ -68,7 +68,7 @@ def after_piece(throw: ThrowContext) -> Reason | None:
 def after_check(throw: ThrowContext, at_rest: bool, unreachable: bool, lo: np.ndarray,
                 hi: np.ndarray) -> Reason | None:
     """The reason the throw's outcome is decided now, or None, from the check after a chunk
-    (:func:`~netgym.physics.watch.near_check`): the ball flies away (it cannot come back into
+    (:func:`~netgym.physics.kernels.watch.near_check`): the ball flies away (it cannot come back into
     the box ``lo``..``hi`` around everything else), it is ``at_rest``, or it can no longer reach
     the opening (``unreachable``: the energy bound, which counts, besides the energy free now,
     all the wind could still feed the balls before the deadline)."""

@@ -1,7 +1,7 @@
 """One lone ball's free flight: the one object every question about it is asked of.
 
-Without air the flight is closed form (:mod:`netgym.physics.flight`: arcs, bounces, sliding);
-through air it is integrated (:mod:`netgym.physics.air`: RK4 steps, the same bounce). The fast
+Without air the flight is closed form (:mod:`netgym.physics.throw.flight`: arcs, bounces, sliding);
+through air it is integrated (:mod:`netgym.physics.kernels.air`: RK4 steps, the same bounce). The fast
 path asks it where the ball is after a while, whether it can still come into a box, and how
 long it certainly takes to travel a distance; the environment asks how close a throw's flight
 came to the opening (the shaped reward) and where it crossed the opening's plane (the
@@ -15,9 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from netgym.physics import air, approach, flight
-from netgym.physics.model import Model
-from netgym.physics.opening import Opening
+from netgym.physics.kernels import air
+
+from netgym.physics.throw import approach, flight
+from netgym.physics.model.model import Model
+from netgym.physics.model.opening import Opening
 
 MEASURE_STEP = 2e-3  # s: step of the flights the shaped reward and the feedback are measured on
 
@@ -56,7 +58,7 @@ class FreeFlight:
     def never_enters(self, p: np.ndarray, v: np.ndarray, lo: np.ndarray, hi: np.ndarray, horizon: float) -> bool:
         """The ball at ``p``, ``v`` cannot come into the box ``lo``..``hi`` within ``horizon``:
         its parabola (with bounces) misses it; through air, it lies outside, held by friction,
-        or too far to come back within ``horizon`` (:func:`~netgym.physics.air.cannot_reach`)."""
+        or too far to come back within ``horizon`` (:func:`~netgym.physics.kernels.air.cannot_reach`)."""
         if not ((p < lo).any() or (p > hi).any()):
             return False  # inside it already
         if self.parabola:

@@ -20,8 +20,8 @@ import numpy as np
 
 from netgym.arguments import vector_argument
 from netgym.errors import SimulationDivergedError
-from netgym.physics import air, reach
-from netgym.physics.frames import Film
+from netgym.physics.kernels import air, reach
+from netgym.physics.film import Film
 from netgym.physics.outcomes import Reason
 from netgym.physics.pause import pause_plan
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, Watched
@@ -31,7 +31,7 @@ from netgym.physics.throw.clearance import clearance
 from netgym.physics.throw.filming import film_after
 from netgym.physics.throw.free_flight import FreeFlight
 from netgym.physics.throw.records import TUNING, Ball, Course, ThrowContext, ThrowResult
-from netgym.physics.watch import RestWindow, Watch
+from netgym.physics.kernels.watch import RestWindow, Watch
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator
@@ -45,7 +45,7 @@ class Throw:
     :param position: release point (m).
     :param velocity: launch velocity (m/s).
     :param fast: take the fast path; False integrates everything to the time limit (the reference).
-    :param film: a :class:`~netgym.physics.frames.Film` to film the throw with (run the plan with
+    :param film: a :class:`~netgym.physics.film.Film` to film the throw with (run the plan with
         the same film): the plan then stops at every instant of its clock from the launch on
         (integration at the substep nearest it, a :class:`~netgym.physics.plans.Tick` while the
         ball flies in closed form), a miss decided in closed form is flown on to its landing for
@@ -108,7 +108,7 @@ class Throw:
                               watch=self._watch(deadline, about))
 
     def _watch(self, deadline: float, about: float) -> Watch:
-        """The :class:`~netgym.physics.watch.Watch` of a throw launched now, with the ball's
+        """The :class:`~netgym.physics.kernels.watch.Watch` of a throw launched now, with the ball's
         ``deadline`` and ``about`` (see :class:`Course`): its energy budget measured now."""
         throw = self.context
         sim, row = throw.sim, throw.ball.row

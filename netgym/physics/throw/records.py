@@ -7,10 +7,10 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 from netgym.physics.outcomes import CaptureRule, Reason
 from netgym.physics.throw.free_flight import FreeFlight
-from netgym.physics.watch import Watch
+from netgym.physics.kernels.watch import Watch
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator

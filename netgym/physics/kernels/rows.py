@@ -7,7 +7,7 @@ brings in its broadcasting machinery, whose first use costs a process 6 to 9 s o
 
 from __future__ import annotations
 
-from netgym.physics.jit import inline_kernel, kernel
+from netgym.physics.kernels.jit import inline_kernel, kernel
 
 
 @inline_kernel

@@ -1,10 +1,10 @@
 """Air on a ball: quadratic drag towards the wind, and the flight of a lone ball through it.
 
 A ball's acceleration is ``g - k |v - wind| (v - wind)`` with ``k = 0.5 rho C_d A / m`` (see
-:func:`~netgym.physics.model.ball_drag_constant`). Its flight has no closed form, so
+:func:`~netgym.physics.model.model.ball_drag_constant`). Its flight has no closed form, so
 :func:`fly` integrates it with classical RK4 in steps of at most ``max_step`` (the fast path's
 flight; error far below the contacts' own, see ``tests/test_air.py``), with the same ground
-bounce as :mod:`netgym.physics.flight`, and sliding on the ground against Coulomb friction
+bounce as :mod:`netgym.physics.throw.flight`, and sliding on the ground against Coulomb friction
 with the wind pushing. :func:`rk4_step` is also the balls' free flight inside the kernels.
 """
 
@@ -14,8 +14,8 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from netgym.physics.jit import kernel
-from netgym.physics.rows import copy_vector
+from netgym.physics.kernels.jit import kernel
+from netgym.physics.kernels.rows import copy_vector
 
 MAX_FLIGHT_STEP = 1e-3   # s: longest RK4 step of the fast path's flight through air
 SPEED_SLACK = 0.05       # m/s: added to the speed bound of :func:`cannot_reach` (sliding's explicit steps)
@@ -48,7 +48,7 @@ def rk4_step(p, v, h, gravity, k, wind):
 
 @kernel
 def _bounce(v, restitution, friction, threshold):
-    """The ground impulse of netgym.physics.flight: restitution above the threshold, Coulomb
+    """The ground impulse of netgym.physics.throw.flight: restitution above the threshold, Coulomb
     friction bounded by friction times the normal impulse."""
     closing = v[2]
     e = restitution if -closing > threshold else 0.0
@@ -87,7 +87,7 @@ def fly(p, v, tau, k, wind, ground, max_step):
     """Move a lone ball (``p``, ``v`` 3-vectors, in place) through air for ``tau`` seconds:
     RK4 steps of at most ``max_step`` while airborne, the ground bounce where its lowest point
     reaches the ground (the step is cut at the contact), sliding once it no longer bounces.
-    ``ground``: a :class:`~netgym.physics.flight.Ground` (the ball's radius, gravity, and the
+    ``ground``: a :class:`~netgym.physics.throw.flight.Ground` (the ball's radius, gravity, and the
     ground's restitution, friction and restitution threshold)."""
     radius, gravity, restitution, friction, threshold = ground
     left = tau

@@ -1,6 +1,6 @@
 """Smooth forces: springs with dampers along them, and gravity. numba kernels over flat arrays.
 
-Each spring pushes its ends by :mod:`~netgym.physics.spring_law`; air drag ``-drag * m * v``
+Each spring pushes its ends by :mod:`~netgym.physics.kernels.spring_law`; air drag ``-drag * m * v``
 acts on every free body.
 """
 
@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import math
 
-from netgym.physics import spring_law
-from netgym.physics.jit import inline_kernel, kernel
+from netgym.physics.kernels import spring_law
+from netgym.physics.kernels.jit import inline_kernel, kernel
 
 
 @inline_kernel
@@ -49,7 +49,7 @@ def _from_columns(columns, rows, n):
 @inline_kernel
 def _dense_group_forces(positions, velocities, params, out, offset, first, length, start, ks, kd):
     """Forces of the dense group (offset, first, length, start), of stiffness ``ks`` and damping
-    ``kd``, of a :class:`~netgym.physics.springs.Springs` into ``out`` (its ``dense_forces``): on
+    ``kd``, of a :class:`~netgym.physics.model.springs.Springs` into ``out`` (its ``dense_forces``): on
     the first particles in rows 0-2, on the second in rows 3-5, -0.0 (which adds nothing,
     bitwise) where a spring is missing or degenerate. Contiguous columns and unsigned indices:
     the compiler vectorises this loop."""
@@ -92,9 +92,9 @@ def _add_dense_group(totals, forces, row, first, length, start):
 @kernel
 def spring_forces(x, v, springs, f):
     """Add every spring's force to ``f`` (n, 3); ``springs``: a
-    :class:`~netgym.physics.springs.Springs`. Bitwise the sum of a loop over the springs sorted
+    :class:`~netgym.physics.model.springs.Springs`. Bitwise the sum of a loop over the springs sorted
     by particle pair: on the second particles group by group in decreasing offset, then on the
-    first particles in increasing offset (the :mod:`~netgym.physics.springs` module says why).
+    first particles in increasing offset (the :mod:`~netgym.physics.model.springs` module says why).
     The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
     groups, pairs, params, sparse = springs.groups, springs.sparse_pairs, springs.sparse_params, springs.sparse_forces
     positions, velocities, totals = springs.columns[0:3], springs.columns[3:6], springs.columns[6:9]
@@ -142,7 +142,7 @@ def spring_forces(x, v, springs, f):
 @kernel
 def accelerations(x, v, inv_mass, gravity, drag, springs, a):
     """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs (a
-    :class:`~netgym.physics.springs.Springs`), gravity and linear air drag ``-drag * v``."""
+    :class:`~netgym.physics.model.springs.Springs`), gravity and linear air drag ``-drag * v``."""
     a[:] = 0.0
     spring_forces(x, v, springs, a)
     for k in range(x.shape[0]):

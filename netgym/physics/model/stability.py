@@ -26,10 +26,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from netgym.physics import spring_law
-from netgym.physics.integrators import damper_share, sweep_dampers
-from netgym.physics.jit import kernel
-from netgym.physics.kinds import Integrator
+from netgym.physics.kernels import spring_law
+from netgym.physics.kernels.integrators import damper_share, sweep_dampers
+from netgym.physics.kernels.jit import kernel
+from netgym.kinds import Integrator
 
 IMEX_SEARCH_GROWTH = 1.5     # the IMEX limit is bracketed by steps growing by this factor ...
 IMEX_SEARCH_HALVINGS = 8     # ... then bisected this often (to 0.2%)
@@ -61,7 +61,7 @@ def _scatter(n: int, springs: np.ndarray, pair_force: np.ndarray) -> np.ndarray:
 
 @kernel
 def _stretches(length, rest, out):
-    """Each spring's :func:`~netgym.physics.spring_law.stretch` into ``out``."""
+    """Each spring's :func:`~netgym.physics.kernels.spring_law.stretch` into ``out``."""
     for s in range(length.shape[0]):
         out[s] = spring_law.stretch(length[s], rest[s])
 

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from netgym.errors import InvalidArgumentError
-from netgym.framing import side_view, thrower_figure
-from netgym.replay import Scenery, Snapshot
+from netgym.view.framing import side_view, thrower_figure
+from netgym.view.replay import Scenery, Snapshot
 
 MAX_FPS = 15             # frames a simulated second the page keeps at most
 DECIMALS = 2             # coordinates rounded to the centimetre

@@ -12,9 +12,9 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from netgym.physics.forces import energies
-from netgym.physics.jit import inline_kernel, kernel
-from netgym.physics.opening import opening_distance
+from netgym.physics.kernels.forces import energies
+from netgym.physics.kernels.jit import inline_kernel, kernel
+from netgym.physics.model.opening import opening_distance
 
 
 @inline_kernel
@@ -48,7 +48,7 @@ class Budget(NamedTuple):
 @kernel
 def out_of_reach(x, v, inv_mass, row, springs, params, opening, budget, time_left):
     """True if the ball in ``row`` can no longer reach the opening (an
-    :class:`~netgym.physics.opening.OpeningRecord`) within ``time_left``: the energy free now
+    :class:`~netgym.physics.model.opening.OpeningRecord`) within ``time_left``: the energy free now
     (kinetic, and potential above the :class:`Budget`'s reference) and the wind's work until
     then cannot lift it to the opening's lowest point, or cannot carry it there in time at the
     speed that energy and its own fall to the ground could give it (a vertical mouth has no

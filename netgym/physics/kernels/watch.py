@@ -19,12 +19,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from netgym.physics.jit import kernel
-from netgym.physics.opening import opening_depth
-from netgym.physics.reach import Budget, out_of_reach
-from netgym.physics.rows import copy_rows
-from netgym.physics.stepping import DIVERGED, OK, advance
-from netgym.physics.surroundings import still_since, survey
+from netgym.physics.kernels.jit import kernel
+from netgym.physics.model.opening import opening_depth
+from netgym.physics.kernels.reach import Budget, out_of_reach
+from netgym.physics.kernels.rows import copy_rows
+from netgym.physics.kernels.stepping import DIVERGED, OK, advance
+from netgym.physics.kernels.surroundings import still_since, survey
 
 
 class RestWindow(NamedTuple):
@@ -54,13 +54,13 @@ class RestWindow(NamedTuple):
 
 
 class Watch(NamedTuple):
-    """What a throw's kernels (these and :func:`~netgym.physics.approach.approach`) know of it:
+    """What a throw's kernels (these and :func:`~netgym.physics.throw.approach.approach`) know of it:
     the ball's ``row``, its ``launched`` and ``deadline`` times (s), the scene's ``dt`` (s),
     ``chunk`` (steps between two checks), ``clearance`` (m: closer than this to anything, the
     ball is simulated, not flown), ``grow`` (m: the box around everything but the ball grows by
     this), ``rule_depth`` (m: past the opening's plane from this depth, the capture rule may
     decide; inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go
-    to sleep), its :class:`~netgym.physics.reach.Budget`, its :class:`RestWindow` and ``box``
+    to sleep), its :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box``
     (6,), the grown box of the last check (min x, y, z, max x, y, z)."""
 
     row: int
@@ -122,7 +122,7 @@ def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
     whether the ball lies inside the box around everything else (the watch's ``box``, written
     here: every body but the ball and the poles' axes, grown by ``grow``), whether it is at
     rest (:func:`at_rest`), and whether it can no longer reach the opening before its deadline
-    (:func:`~netgym.physics.reach.out_of_reach`)."""
+    (:func:`~netgym.physics.kernels.reach.out_of_reach`)."""
     row, box = watch.row, watch.box
     others = survey(x, v, row, poles, box)
     inside = True
@@ -139,7 +139,7 @@ def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
 @kernel
 def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, watch, time):
     """Integrate chunk after chunk of ``watch.chunk`` steps (fewer before the deadline), with
-    :func:`~netgym.physics.stepping.advance`, from ``time`` while nothing could be decided:
+    :func:`~netgym.physics.kernels.stepping.advance`, from ``time`` while nothing could be decided:
     stop after the chunk at which the deadline is within half a step, the ball lies at least
     ``rule_depth`` past the opening's plane, or :func:`near_check` finds everything else
     slower than ``sleep_speed``, the ball outside the box, at rest or out of reach. Returns

@@ -1,7 +1,7 @@
 """Time integrators for the smooth forces (springs, dampers, gravity); contacts come after.
 
 Five methods, one numba kernel each; :func:`smooth_step` takes the one its
-:class:`~netgym.physics.model.Settings` are made for, chosen when the calling kernel compiles:
+:class:`~netgym.physics.model.model.Settings` are made for, chosen when the calling kernel compiles:
 
 ====================  =====  ===============================================================
 integrator            order  notes
@@ -29,11 +29,11 @@ import numpy as np
 from numba.core.errors import NumbaTypeError
 from numba.extending import overload
 
-from netgym.physics import spring_law
-from netgym.physics.forces import accelerations, spring_axis, spring_forces
-from netgym.physics.jit import inline_kernel, kernel
-from netgym.physics.kinds import Integrator
-from netgym.physics.rows import add_pair_force, add_scaled, copy_rows
+from netgym.physics.kernels import spring_law
+from netgym.physics.kernels.forces import accelerations, spring_axis, spring_forces
+from netgym.physics.kernels.jit import inline_kernel, kernel
+from netgym.kinds import Integrator
+from netgym.physics.kernels.rows import add_pair_force, add_scaled, copy_rows
 
 WORK_SLOTS = 8
 START_SLOT = 7   # the one slot the integrators leave alone: positions at the start of a substep
@@ -307,9 +307,9 @@ def _conjugate_gradients(inv_mass, mass_scale, pairs, dt, settings, scratch):
 
 def smooth_step(settings, x, v, inv_mass, model, gravity, dt, scratch, stats):
     """One step of ``dt`` of the smooth forces of ``model`` (a
-    :class:`~netgym.physics.model.KernelModel`: the net's drag, the springs) and ``gravity`` with the
+    :class:`~netgym.physics.model.model.KernelModel`: the net's drag, the springs) and ``gravity`` with the
     integrator ``settings`` are made for (their class, see
-    :meth:`~netgym.physics.model.Settings.make`); ``scratch``: a :class:`Scratch`; implicit Euler
+    :meth:`~netgym.physics.model.model.Settings.make`); ``scratch``: a :class:`Scratch`; implicit Euler
     adds its CG iterations to ``stats``. For numba kernels only: the integrator is chosen when
     the calling kernel compiles, so that it compiles that integrator alone."""
     raise TypeError("smooth_step runs inside numba kernels only")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from netgym.physics.jit import kernel
+from netgym.physics.kernels.jit import kernel
 
 
 @kernel

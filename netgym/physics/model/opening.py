@@ -13,7 +13,7 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.config import NetConfig
-from netgym.physics.jit import inline_kernel, kernel
+from netgym.physics.kernels.jit import inline_kernel, kernel
 
 
 class OpeningRecord(NamedTuple):

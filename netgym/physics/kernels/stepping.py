@@ -6,13 +6,13 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from netgym.physics.jit import kernel
+from netgym.physics.kernels.jit import kernel
 
-from netgym.physics.air import rk4_step
-from netgym.physics.contacts import Bodies, resolve_ball_contacts, resolve_ground
-from netgym.physics.forces import kinetic_energy
-from netgym.physics.integrators import START_SLOT, smooth_step
-from netgym.physics.rows import copy_row, copy_rows
+from netgym.physics.kernels.air import rk4_step
+from netgym.physics.kernels.contacts import Bodies, resolve_ball_contacts, resolve_ground
+from netgym.physics.kernels.forces import kinetic_energy
+from netgym.physics.kernels.integrators import START_SLOT, smooth_step
+from netgym.physics.kernels.rows import copy_row, copy_rows
 
 OK, DIVERGED = 0, 1
 COUNTERS = np.dtype([("substeps", np.int64), ("cg_iterations", np.int64)])
@@ -103,7 +103,7 @@ def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind
 @kernel
 def update_entered(x, before, n_net, entered, opening):
     """Set a ball's flag when its centre crosses the opening (an
-    :class:`~netgym.physics.opening.OpeningRecord`) inwards inside the rectangle, clear it when
+    :class:`~netgym.physics.model.opening.OpeningRecord`) inwards inside the rectangle, clear it when
     it crosses outwards."""
     axis, sign, plane, u, w = opening.axis, opening.sign, opening.plane, opening.u, opening.w
     for b in range(entered.shape[0]):
@@ -130,7 +130,7 @@ def _step_buffers(x, n_net):
 @kernel
 def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast: the
-    passes of a substep in order, each handed the :class:`~netgym.physics.model.KernelModel`
+    passes of a substep in order, each handed the :class:`~netgym.physics.model.model.KernelModel`
     or the parts of it it needs; ``buffers`` from :func:`_step_buffers`; ``net_gravity``: the
     acceleration gravity gives the net (``model.gravity`` but in a relaxation with inertia);
     ``entered``: the balls' flags, or None for a net without balls, whose kernels numba then
@@ -175,7 +175,7 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     3. contacts, in one deterministic pass;
     4. the balls' ``entered`` flags (crossings of the opening).
 
-    ``scratch`` is an :class:`~netgym.physics.integrators.Scratch` for this many bodies;
+    ``scratch`` is an :class:`~netgym.physics.kernels.integrators.Scratch` for this many bodies;
     ``stats`` a :data:`COUNTERS` record array. Returns OK, or DIVERGED as soon as a velocity is
     non-finite or above ``divergence_speed`` (the state is then invalid and the caller restores
     its copy).

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.config import NetConfig
-from netgym.physics.kinds import SpringKind
-from netgym.physics.opening import Opening
+from netgym.kinds import SpringKind
+from netgym.physics.model.opening import Opening
 
 _OFFSETS = {
     SpringKind.STRUCTURAL: ((1, 0), (0, 1)),

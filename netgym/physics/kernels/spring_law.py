@@ -11,7 +11,7 @@ as written out in place).
 
 from __future__ import annotations
 
-from netgym.physics.jit import inline_kernel
+from netgym.physics.kernels.jit import inline_kernel
 
 DEGENERATE = 1e-12  # m: a spring shorter than this has no direction, and exerts nothing
 

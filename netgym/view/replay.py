@@ -5,7 +5,7 @@ instant, instead of pixels.
 ``rgb_array_list`` would draw a frame (the same instants, ``1 / render_fps`` simulated seconds
 apart), and ``render()`` hands them out as it does frames. What does not move in an episode
 (the springs drawn, the poles, the ball radius) is the snapshots' shared :class:`Scenery`.
-:func:`netgym.video.write_video` turns them into a 3D page (``.html``).
+:func:`netgym.view.video.write_video` turns them into a 3D page (``.html``).
 """
 
 from __future__ import annotations

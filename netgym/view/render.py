@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from netgym.errors import InvalidArgumentError
-from netgym.framing import Figure, flight_points, frame_points, side_view, thrower_figure
+from netgym.view.framing import Figure, flight_points, frame_points, side_view, thrower_figure
 from netgym.physics.simulator import Simulator
 
 SKY_TOP = np.array([150, 190, 235], dtype=np.float64)

@@ -15,11 +15,11 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.config import SceneConfig, SimulationConfig
-from netgym.physics.contacts import Materials, Poles
-from netgym.physics.kinds import Contact, Integrator, SpringKind
-from netgym.physics.net import NetGeometry, build_net
-from netgym.physics.opening import Opening, OpeningRecord
-from netgym.physics.springs import SpringLayout, Springs, kernel_indices
+from netgym.physics.kernels.contacts import Materials, Poles
+from netgym.kinds import Contact, Integrator, SpringKind
+from netgym.physics.model.net import NetGeometry, build_net
+from netgym.physics.model.opening import Opening, OpeningRecord
+from netgym.physics.model.springs import SpringLayout, Springs, kernel_indices
 
 
 def ball_drag_constant(config: SceneConfig) -> float:
@@ -107,7 +107,7 @@ class Model:
     ``segments`` are the structural springs, against which balls collide (not only the
     particles: springs never sink into a ball), in order of their first particle, and
     ``segment_start`` where each particle's begin (:func:`index_segments`). ``poles`` are the
-    capsules (:class:`~netgym.physics.contacts.Poles`). ``contact`` rows are (restitution, friction) per
+    capsules (:class:`~netgym.physics.kernels.contacts.Poles`). ``contact`` rows are (restitution, friction) per
     :class:`Contact` kind. ``kernel`` is the same in the form the kernels take.
     """
 
@@ -197,7 +197,7 @@ class Model:
     @functools.cached_property
     def kernel(self) -> KernelModel:
         """The arrays and constants the kernels need, as one record; its springs a
-        :class:`~netgym.physics.springs.Springs`."""
+        :class:`~netgym.physics.model.springs.Springs`."""
         springs = self.spring_layout[0]
         return KernelModel(self.n_net, springs, kernel_indices(self.segments), self.segment_start, self.poles,
                            Materials.of_table(self.contact), self.restitution_threshold, self.gravity, self.drag,

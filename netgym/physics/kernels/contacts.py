@@ -26,9 +26,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from netgym.physics.jit import inline_kernel, kernel
-from netgym.physics.kinds import Contact
-from netgym.physics.rows import add_scaled
+from netgym.physics.kernels.jit import inline_kernel, kernel
+from netgym.kinds import Contact
+from netgym.physics.kernels.rows import add_scaled
 
 
 COINCIDENT = 1e-24   # m^2: squared distances below this leave no direction between two centres
@@ -256,7 +256,7 @@ def _segment_extent(x, segments):
 @kernel
 def _ball_net(bodies, b, model, extent, near):
     """Resolve ball ``b`` against every net particle, then every segment's interior, in index
-    order (``model``: the :class:`~netgym.physics.model.KernelModel`). Returns how far that
+    order (``model``: the :class:`~netgym.physics.model.model.KernelModel`). Returns how far that
     moved any body (a bound, m).
 
     Broad phase for the segments: a segment touches the ball's bounding cube only if its first
@@ -363,7 +363,7 @@ def resolve_ball_contacts(bodies, model, net_box, near):
     ``net_box`` = (xmin, ymin, zmin, xmax, ymax, zmax) of the net particles: a ball whose
     sphere does not overlap it skips the particle and segment tests (broad phase); the others
     test only the segments near them (see :func:`_ball_net`; ``model``: the
-    :class:`~netgym.physics.model.KernelModel`, ``near``: scratch for ``n_net`` particle indices).
+    :class:`~netgym.physics.model.model.KernelModel`, ``near``: scratch for ``n_net`` particle indices).
     """
     x = bodies.x
     n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold

@@ -16,12 +16,12 @@ import math
 
 import numpy as np
 
-from netgym.physics import air
-from netgym.physics.contacts import clearance
-from netgym.physics.flight import ground_time, sliding
-from netgym.physics.jit import inline_kernel, kernel
-from netgym.physics.opening import opening_depth
-from netgym.physics.stepping import update_entered
+from netgym.physics.kernels import air
+from netgym.physics.kernels.contacts import clearance
+from netgym.physics.throw.flight import ground_time, sliding
+from netgym.physics.kernels.jit import inline_kernel, kernel
+from netgym.physics.model.opening import opening_depth
+from netgym.physics.kernels.stepping import update_entered
 
 
 @kernel
@@ -103,7 +103,7 @@ def approach(x, v, entered, model, ground, watch, box, time):
 def air_safe_time(speed, gap, gravity, k, wind, piece):
     """A time within which a ball at ``speed`` through air (drag constant ``k``, ``wind``)
     cannot travel ``gap``, at most ``piece``: its acceleration bounded over ``piece`` with the
-    speed it could gain meanwhile (:func:`~netgym.physics.air.max_acceleration`)."""
+    speed it could gain meanwhile (:func:`~netgym.physics.kernels.air.max_acceleration`)."""
     g0 = air.max_acceleration(speed, gravity, k, wind)
     g = air.max_acceleration(speed + g0 * piece, gravity, k, wind)
     return min(travel_time(speed, g, gap), piece)
@@ -112,7 +112,7 @@ def air_safe_time(speed, gap, gravity, k, wind, piece):
 @kernel
 def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
     """:func:`approach` through air: fly the ball of ``watch.row`` from ``time`` piece after
-    piece (:func:`~netgym.physics.air.fly`, bounces and sliding included) while each certainly
+    piece (:func:`~netgym.physics.kernels.air.fly`, bounces and sliding included) while each certainly
     ends undecided; returns the time reached (``x``, ``v`` and ``entered`` moved on in place).
 
     A piece starts only while the ball is not outside ``box`` for good (lying there held by

@@ -33,7 +33,7 @@ class _Labelled(IntEnum):
 
 
 class Integrator(_Labelled):
-    """Time integrators of the smooth forces (see :mod:`netgym.physics.integrators`)."""
+    """Time integrators of the smooth forces (see :mod:`netgym.physics.kernels.integrators`)."""
 
     EXPLICIT_EULER = 0
     SYMPLECTIC_EULER = 1

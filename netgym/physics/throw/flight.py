@@ -1,7 +1,7 @@
 """Closed-form motion of a lone ball: parabolic arcs, ground bounces and sliding to rest.
 
 Used by the simulator's fast path while the ball cannot touch the net. The bounce is the
-same impulse as the ground contact of :mod:`netgym.physics.contacts` (restitution above the
+same impulse as the ground contact of :mod:`netgym.physics.kernels.contacts` (restitution above the
 threshold, Coulomb friction bounded by friction times the normal impulse); a ball that no
 longer bounces slides, decelerating at ``friction * |g|``.
 """
@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from netgym.physics.jit import kernel
+from netgym.physics.kernels.jit import kernel
 
 _MAX_ARCS = 200
 STILL_SPEED = 1e-9  # m/s: a ball sliding slower than this on the ground lies still

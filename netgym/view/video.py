@@ -1,5 +1,5 @@
 """Writing an episode to a file: animated GIF (Pillow), MP4 (imageio with its ffmpeg), or a 3D
-page you can turn (``.html``, plotly; :mod:`netgym.replay_page`).
+page you can turn (``.html``, plotly; :mod:`netgym.view.replay_page`).
 
 All come with the ``render`` extra (``pip install netgym[render]``). A video of an episode is
 the ``rgb_array_list`` frames of its steps, which are ``1 / render_fps`` simulated seconds
@@ -25,7 +25,7 @@ HOLD = 0.5          # simulated seconds the last frame of each throw is held, to
 
 def write_video(frames: Sequence[Any], path: str | Path, fps: int, captions: Sequence[str] | None = None) -> Path:
     """Write ``frames`` to ``path`` at ``fps``, each with its caption (if given), and return the
-    path: (H, W, 3) uint8 frames to ``.gif`` or ``.mp4``, :class:`~netgym.replay.Snapshot` to ``.html``."""
+    path: (H, W, 3) uint8 frames to ``.gif`` or ``.mp4``, :class:`~netgym.view.replay.Snapshot` to ``.html``."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in FORMATS:
@@ -34,7 +34,7 @@ def write_video(frames: Sequence[Any], path: str | Path, fps: int, captions: Seq
         raise InvalidArgumentError("no frames to write (render_mode='rgb_array_list' or 'replay_list' collects them)")
     if captions is not None and len(captions) != len(frames):
         raise InvalidArgumentError(f"{len(captions)} captions for {len(frames)} frames; give one per frame")
-    from netgym.replay import Snapshot
+    from netgym.view.replay import Snapshot
 
     snapshots = isinstance(frames[0], Snapshot)
     if snapshots != (suffix == ".html"):
@@ -42,11 +42,11 @@ def write_video(frames: Sequence[Any], path: str | Path, fps: int, captions: Seq
                                    f".gif and .mp4 the images of 'rgb_array_list'; got {type(frames[0]).__name__}")
     path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".html":
-        from netgym.replay_page import write_replay_page
+        from netgym.view.replay_page import write_replay_page
 
         return write_replay_page(frames, path, fps, captions)
     if captions is not None:
-        from netgym.render import caption_frame
+        from netgym.view.render import caption_frame
 
         frames = [caption_frame(frame, caption) for frame, caption in zip(frames, captions)]
     if suffix == ".gif":

@@ -1,8 +1,8 @@
 """What a view of a throw shows: the thrower's stick figure and a camera that frames the net,
 the thrower and the ball's whole flight up to the net (its apex included).
 
-Pure geometry, shared by the frames of :mod:`netgym.render` and the 3D page of
-:mod:`netgym.replay_page`.
+Pure geometry, shared by the frames of :mod:`netgym.view.render` and the 3D page of
+:mod:`netgym.view.replay_page`.
 """
 
 from __future__ import annotations
