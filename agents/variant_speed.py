@@ -23,7 +23,7 @@ from tqdm import tqdm
 
 import netgym
 from agents.oracle import BallisticOracle
-from netgym.bench.speed_table import BASE_ID
+from netgym.bench.speed.speed_table import BASE_ID
 
 POLICIES = ("oracle", "random")
 VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCatchPixels-v0")

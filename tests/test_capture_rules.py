@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from netgym.bench.throws import sample_throws
+from agents.bench.throws import sample_throws
 from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
 from netgym.errors import ConfigError

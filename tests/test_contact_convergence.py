@@ -1,4 +1,4 @@
-"""Convergence through contact (netgym.bench.contact_convergence): the phases, the slopes and
+"""Convergence through contact (netgym.bench.accuracy.contact_convergence): the phases, the slopes and
 the flags it reports, and what it measures of the simulator: a ball's free flight is exact for
 every integrator until the first contact, and errors appear only once it touches the net."""
 
@@ -9,10 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from netgym.bench.contact_convergence import (ENSEMBLE_OFFSET, PHASES, QUICK_LADDERS, ensemble_launches,
+from netgym.bench.accuracy.contact_convergence import (ENSEMBLE_OFFSET, PHASES, QUICK_LADDERS, ensemble_launches,
                                               fitted_slope, flagged, measure_strike, phase_errors, summary)
-from netgym.bench.convergence_table import default_cost, slope_table, strike_table
-from netgym.bench.work_precision import STRIKE
+from netgym.bench.accuracy.convergence_table import default_cost, slope_table, strike_table
+from netgym.bench.accuracy.work_precision import STRIKE
 from netgym.physics.simulator import Simulator
 
 

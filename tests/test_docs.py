@@ -17,7 +17,7 @@ import gymnasium as gym
 import pytest
 
 import netgym
-from netgym.bench import report
+from agents.bench import report
 from netgym.launch import LAUNCH_ENTRIES
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -13,8 +13,8 @@ from numba import njit
 from numba.core import event
 from numba.core.errors import TypingError
 
-from netgym.bench import first_step_text
-from netgym.bench.first_step import FirstStep, add_runs, cold_and_warm, latest_runs, run_figures
+from agents.bench import first_step_text
+from agents.bench.first_step import FirstStep, add_runs, cold_and_warm, latest_runs, run_figures
 from netgym.config import load_scene
 from netgym.errors import InvalidArgumentError
 from netgym.physics.kernels import stepping

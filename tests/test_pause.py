@@ -166,7 +166,7 @@ def test_the_pause_leaves_piles_as_still_as_a_relaxation_at_the_scenes_own_step(
     these 28 nets one 10-ball pile moves 0.19 m after the default pause and 0.04 m after the 2 ms
     one, while the 2 ms pause leaves another moving 0.16 m: a bound on the largest would bound
     one pile, so the bound is on the 90th percentile)."""
-    from netgym.bench.pause_accuracy import loaded_net, pause
+    from netgym.bench.accuracy.pause_accuracy import loaded_net, pause
 
     sim = Simulator("basket")
     default, fine = [], []

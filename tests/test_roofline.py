@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from netgym.bench import roofline
+from netgym.bench.speed import roofline
 
 
 def test_the_instruction_count_tells_a_vectorised_loop_from_a_scalar_one() -> None:

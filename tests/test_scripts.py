@@ -11,8 +11,8 @@ from pathlib import Path
 import gymnasium as gym
 import pytest
 
-from netgym.bench.env_throughput import SETUPS
-from netgym.bench.episodes import ROWS
+from agents.bench.env_throughput import SETUPS
+from agents.bench.episodes import ROWS
 from netgym.bench.results import RESULTS, read_results
 from netgym.config import INTEGRATORS
 
@@ -146,7 +146,7 @@ def test_episode_agreement_quick_compares_every_throw() -> None:
 
 @pytest.mark.slow
 def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same_nets() -> None:
-    from netgym.bench.pause_accuracy import PAUSES
+    from netgym.bench.accuracy.pause_accuracy import PAUSES
 
     from netgym.physics.simulator import Simulator
 
@@ -176,7 +176,7 @@ def test_pause_accuracy_quick_measures_every_pause_and_a_candidate_from_the_same
 
 @pytest.mark.slow
 def test_pile_creep_quick_measures_every_arranged_pile_and_the_loaded_nets() -> None:
-    from netgym.bench.creep import ARRANGED
+    from netgym.bench.accuracy.creep import ARRANGED
 
     out = _run("scripts/pile_creep.py", "--quick")
     rows = [line.split("|") for line in out.splitlines() if line.startswith("| ") and "---" not in line]

@@ -216,7 +216,7 @@ def test_the_fast_path_integrates_on_the_full_simulations_step_grid() -> None:
     path integrates it takes the full simulation's own steps: every integration request of these
     throws into the held goal that touch the net ends a whole number of steps after the
     launch, and each throw's outcome is the full simulation's."""
-    from netgym.bench.throws import sample_throws
+    from agents.bench.throws import sample_throws
 
     sim = Simulator("goal", {"capture_rule": "held"})
     touching = 0

@@ -21,7 +21,7 @@ from collections.abc import Callable, Iterable
 
 import numpy as np
 
-from netgym.bench.work_precision import STRIKE, STRIKE_SECONDS
+from netgym.bench.accuracy.work_precision import STRIKE, STRIKE_SECONDS
 from netgym.errors import SimulationDivergedError
 from netgym.physics.simulator import Simulator
 

@@ -1,6 +1,6 @@
 """The benchmark report's fixed prose (docs/BENCHMARKS.md): for each section what is measured and
 by which command, and what the table means. Sentences whose figures come from the run are made in
-:mod:`netgym.bench.report`; the figures here come from measurements outside the report's run, each
+:mod:`agents.bench.report`; the figures here come from measurements outside the report's run, each
 with its command or test. How each finding was reached is in the history of the commits."""
 
 INTRO_TEXT = (
@@ -44,7 +44,7 @@ HELD_GOAL_TEXT = (
 PEERS_TEXT = (
     "The same net (604 particles, 3250 springs, same masses, springs, dampers, drag and gravity) released from "
     "its built shape and stepped by other implementations, with the error against the same rk4 reference after "
-    "the same simulated time (`netgym/bench/peers.py`). The NumPy version is a plain vectorised implementation "
+    "the same simulated time (`netgym/bench/speed/peers.py`). The NumPy version is a plain vectorised implementation "
     "(gather, `np.add.at` scatter). MuJoCo (`pip install -e .[bench]`) models each free particle as a body with "
     "three slide joints (joint damping = air drag), each spring as a spatial tendon between two sites (stiffness "
     "ks, damping kd, spring length = rest length), fixed particles as world sites, contacts off, its Euler "
@@ -166,7 +166,7 @@ CREEP_NOTES = (
 
 ROOFLINE_TEXT = (
     "How far the spring pass is from what the machine can do (`python scripts/roofline.py`, "
-    "`netgym.bench.roofline`): a streaming triad over arrays that fit in the L2 cache (the basket's "
+    "`netgym.bench.speed.roofline`): a streaming triad over arrays that fit in the L2 cache (the basket's "
     "positions, velocities, forces and springs do) and over arrays larger than the last-level cache, "
     "independent fused multiply-adds and independent square roots and divisions measure the roofs; the "
     "pass's bytes, flops and its one square root and division per spring give its floor on each, and the "
@@ -198,7 +198,7 @@ VARIANT_SPEED_NOTES = (
 CONTACT_CONVERGENCE_TEXT = (
     "What the errors of section 1 are made of, phase by phase (`python scripts/contact_convergence.py --plot "
     "docs/figures/contact_convergence.png`, "
-    "`netgym/bench/contact_convergence.py`). The same strike, run from one settled net with every integrator over "
+    "`netgym/bench/accuracy/contact_convergence.py`). The same strike, run from one settled net with every integrator over "
     "a ladder of halving steps (each its stable ones), its ball sampled every 2 ms; in each phase, before the "
     "first contact, the first 10 ms after it and the rest, the largest distance of the ball to the reference's. "
     "The reference, RK4 at 3.9 us, is run again at half its step: an error within ten times that self-difference "

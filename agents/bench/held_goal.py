@@ -8,8 +8,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from netgym.bench.throws import sample_throws
+from agents.bench.throws import sample_throws
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
 
 HORIZONTAL_SPEED = 0.05  # m/s: slower than this, the ball's horizontal motion has ended
 FLOOR_GAP = 0.015        # m: a ball whose bottom is higher than this above the ground is off the floor
@@ -28,7 +29,7 @@ class HeldCapture:
 
 
 def held_captures(count: int, seed: int) -> list[HeldCapture]:
-    """Throw ``count`` seeded throws (:func:`~netgym.bench.throws.sample_throws`) into the empty
+    """Throw ``count`` seeded throws (:func:`~agents.bench.throws.sample_throws`) into the empty
     goal under ``held``, each from the net at rest, and return the captured ones."""
     sim = Simulator("goal", {"capture_rule": "held"})
     radius, n_net = sim.model.ball_radius, sim.model.n_net
@@ -44,7 +45,7 @@ def held_captures(count: int, seed: int) -> list[HeldCapture]:
                 samples.append((s.state.time - start, float(np.hypot(*v[-1, :2])), float(x[-1, 2]),
                                 float(np.abs(v[:n_net]).max())))
 
-        result = sim.throw(position, velocity, observer=record)
+        result = throw(sim, position, velocity, observer=record)
         if not result.captured or not samples:
             continue
         t, horizontal, height, net_speed = np.array(samples).T

@@ -22,7 +22,7 @@ from typing import Any, Mapping
 import numpy as np
 from tqdm import tqdm
 
-from netgym.bench.throws import ballistic_oracle
+from agents.bench.throws import ballistic_oracle
 from netgym.envs import NetCatchEnv
 from netgym.errors import NetNotAtRestError
 

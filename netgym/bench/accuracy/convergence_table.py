@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from netgym.bench.contact_convergence import PHASES, flagged, summary
+from netgym.bench.accuracy.contact_convergence import PHASES, flagged, summary
 from netgym.bench.results import read_results
 from netgym.bench.settings import DEFAULT
 

@@ -10,9 +10,12 @@ from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
-from netgym.bench.throws import Throw
+import numpy as np
+
 from netgym.physics.simulator import Simulator
-from netgym.physics.throws import ThrowResult
+from netgym.physics.throw import ThrowResult, throw
+
+Throw = tuple[np.ndarray, np.ndarray]  # (launch position, launch velocity)
 
 CASES = {  # label: scene and overrides of the fast-path comparisons the benchmarks print
     "basket": ("basket", None),
@@ -46,16 +49,16 @@ def _simulate(args: tuple[str, dict | None, float | None, list[Throw]]) -> list[
     for position, velocity in throws:
         sim.reset()
         start = time.perf_counter()
-        fast = sim.throw(position, velocity)
+        fast = throw(sim, position, velocity)
         fast_seconds = time.perf_counter() - start
         sim.reset()
         start = time.perf_counter()
-        full = sim.throw(position, velocity, fast=False)
+        full = throw(sim, position, velocity, fast=False)
         full_seconds = time.perf_counter() - start
         reference = None
         if fine is not None:
             fine.reset()
-            reference = fine.throw(position, velocity, fast=False).captured
+            reference = throw(fine, position, velocity, fast=False).captured
         out.append(Outcome(fast.captured, full.captured, fast_seconds, full_seconds, fast.substeps > 0, reference))
     return out
 
@@ -79,7 +82,7 @@ def compare(scene: str, throws: list[Throw], workers: int = 1, overrides: dict |
     """Simulate every throw fast and fully, on ``workers`` processes (forked after compiling),
     in the scene with ``overrides`` (e.g. ``{"capture_rule": "held"}``); with ``reference_dt``,
     also fully at that (finer) step: how near the converged outcome each way comes."""
-    Simulator(scene, overrides).throw(*throws[0])  # compile and settle before forking
+    throw(Simulator(scene, overrides), *throws[0])  # compile and settle before forking
     if reference_dt is not None:
         Simulator(scene, _reference_overrides(overrides, reference_dt))  # its net settles once, before forking
     return _interleaved(_simulate, (scene, overrides, reference_dt), throws, workers)
@@ -91,7 +94,7 @@ def _throw_each(args: tuple[str, dict | None, bool, list[Throw]]) -> list[ThrowR
     results = []
     for position, velocity in throws:
         sim.reset()
-        results.append(sim.throw(position, velocity, fast))
+        results.append(throw(sim, position, velocity, fast))
     return results
 
 
@@ -99,7 +102,7 @@ def throw_each(scene: str, throws: list[Throw], workers: int = 1, overrides: dic
                fast: bool = True) -> list[ThrowResult]:
     """Every throw from the settled empty net, by the fast path or (``fast=False``) simulated
     fully to the time limit, on ``workers`` processes."""
-    Simulator(scene, overrides).throw(*throws[0], fast)  # compile and settle before forking
+    throw(Simulator(scene, overrides), *throws[0], fast)  # compile and settle before forking
     return _interleaved(_throw_each, (scene, overrides, fast), throws, workers)
 
 

@@ -9,8 +9,8 @@ import numpy as np
 
 from netgym.config import INTEGRATORS
 from netgym.errors import SimulationDivergedError
-from netgym.physics.simulator import Simulator
 from netgym.physics.model.stability import stable_dt
+from netgym.physics.simulator import Simulator
 
 
 def _stable(integrator: str, dt: float, overrides: dict, seconds: float, sim_cache: dict) -> bool:

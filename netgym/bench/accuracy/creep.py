@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 from tqdm import tqdm
 
-from netgym.bench.pause_accuracy import largest_move, loaded_net
+from netgym.bench.accuracy.pause_accuracy import largest_move, loaded_net
 from netgym.physics.simulator import Simulator
 
 ARRANGED = {  # label: drop positions (m), released at rest above the basket's bottom

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from netgym.bench.first_step import latest_runs
+from agents.bench.first_step import latest_runs
 from netgym.bench.results import read_results
 
 

@@ -25,6 +25,7 @@ from tqdm import tqdm
 from netgym.arguments import describe_overrides
 from netgym.errors import NetNotAtRestError
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
 
 REFERENCE = {"dt": 5e-4, "settle_speed": 3e-3, "max_time": 20.0}
 PAUSES = {  # label: arguments of Simulator.relax_plan (none: the default pause)
@@ -62,7 +63,7 @@ def loaded_net(sim: Simulator, seed: int) -> int:
     for _ in range(count):
         x, y = rng.uniform(-DROP_SPREAD, DROP_SPREAD, 2)
         vx, vy = rng.uniform(-DROP_SPEED, DROP_SPEED, 2)
-        sim.throw([x, y, DROP_HEIGHT], [vx, vy, 0.0])
+        throw(sim, [x, y, DROP_HEIGHT], [vx, vy, 0.0])
     return count
 
 

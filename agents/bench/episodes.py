@@ -11,10 +11,9 @@ from typing import Any
 
 import numpy as np
 
+from agents.bench.throws import ballistic_oracle
 from netgym.arguments import describe_overrides
-from netgym.bench.throws import ballistic_oracle
 from netgym.envs import NetCatchEnv
-
 
 SHIPPED_PPO = "shipped PPO"
 ROWS = (("basket", "oracle", 3), ("basket", SHIPPED_PPO, 3), ("basket", "random", 3), ("basket", "oracle", 10),

@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import time
 
+from agents.bench.throws import sample_throws
 from netgym.bench.settings import outcome_sweeps
-from netgym.bench.throws import sample_throws
 from netgym.errors import SimulationDivergedError
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
 
 
 def outcome_accuracy(count: int, quick: bool = False) -> list[dict]:
@@ -18,13 +19,13 @@ def outcome_accuracy(count: int, quick: bool = False) -> list[dict]:
 
     def outcomes(integrator: str, dt: float) -> tuple[list[bool], float]:
         sim = Simulator("basket", {"simulation.integrator": integrator, "simulation.dt": dt}, check_stability=False)
-        sim.throw(*throws[0])
+        throw(sim, *throws[0])
         captured, wall = [], 0.0
         for position, velocity in throws:
             sim.reset()
             start = time.perf_counter()
             try:
-                captured.append(sim.throw(position, velocity).captured)
+                captured.append(throw(sim, position, velocity).captured)
             except SimulationDivergedError:
                 captured.append(None)
             wall += time.perf_counter() - start

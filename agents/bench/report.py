@@ -12,22 +12,10 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from netgym.bench import (
-    convergence_table,
-    creep,
-    episode_agreement,
-    episodes,
-    pause_accuracy,
-    roofline,
-    sim_throughput,
-    speed_table,
-)
-from netgym.bench.env_throughput import SETUPS, env_throughput
-from netgym.bench.fast_path import CASES, compare, summarise
-from netgym.bench.outcomes import outcome_accuracy
-from netgym.bench.peers import peers
-from netgym.bench.results import RESULTS, read_results, write_results
-from netgym.bench.report_text import (
+from agents.bench import episode_agreement, episodes
+from agents.bench.env_throughput import SETUPS, env_throughput
+from agents.bench.outcomes import outcome_accuracy
+from agents.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
     CONTACT_CONVERGENCE_NOTES,
@@ -53,11 +41,15 @@ from netgym.bench.report_text import (
     VARIANT_SPEED_NOTES,
     VARIANT_SPEED_TEXT,
 )
+from agents.bench.throws import sample_throws
+from netgym.bench.accuracy import convergence_table, creep, pause_accuracy
+from netgym.bench.accuracy.fast_path import CASES, compare, summarise
+from netgym.bench.accuracy.stability_limits import stability_limits
+from netgym.bench.accuracy.work_precision import SAMPLE, STRIKE, STRIKE_SECONDS, work_precision
+from netgym.bench.results import RESULTS, read_results, write_results
 from netgym.bench.settings import DEFAULT, PEER_SETTING, QUICK_REFERENCE, REFERENCE
-from netgym.bench.stability_limits import stability_limits
-from netgym.bench.throws import sample_throws
-from netgym.bench.work_precision import SAMPLE, STRIKE, STRIKE_SECONDS, work_precision
-
+from netgym.bench.speed import roofline, sim_throughput, speed_table
+from netgym.bench.speed.peers import peers
 
 REPORT_RESULTS = RESULTS / "report.json"
 """Where a full run keeps the figures of sections 1-9, which ``scripts/report.py --render`` renders."""
@@ -155,7 +147,7 @@ def _header(record: dict | None) -> list[str]:
 def _work_precision(report: Report) -> list[str]:
     """Section 1: error against wall time of every integrator over its dt sweep."""
     out = ["## 1. Work-precision", "",
-           f"The error of every integrator over a sweep of dt, against its cost (`netgym/bench/work_precision.py`). "
+           f"The error of every integrator over a sweep of dt, against its cost (`netgym/bench/accuracy/work_precision.py`). "
            f"The default basket at rest; a ball launched from {STRIKE[0].tolist()} m at {STRIKE[1].tolist()} m/s "
            f"strikes the bottom of the net; {STRIKE_SECONDS} s simulated, against {report.reference[0]} at dt = "
            f"{report.reference[1]:g} s. Ball error: RMS over the strike (sampled every {SAMPLE} s) of the distance to "
@@ -185,7 +177,7 @@ def _outcomes(report: Report) -> list[str]:
     """Section 2: outcome agreement with a fine reference against throws per second."""
     out = ["## 2. Outcome accuracy", "",
            "Whether a throw's outcome, caught or not, is the one a converged simulation gives, and how many throws a "
-           f"second each setting decides (`netgym/bench/outcomes.py`): {report.count} seeded throws (seed 99; half "
+           f"second each setting decides (`agents/bench/outcomes.py`): {report.count} seeded throws (seed 99; half "
            "uniform-random actions, half the ballistic oracle's plus noise), each into the empty basket and decided "
            "by the fast path, against the outcomes of rk4 at dt = 0.1 ms. `diverged` counts the throws a setting "
            f"could not simulate. The default setting is {DEFAULT[0]} at {DEFAULT[1] * 1e3:g} ms.",
@@ -207,7 +199,7 @@ def _stability(report: Report) -> list[str]:
     out = ["## 3. Stability limits", "",
            "The largest dt at which 1 s of the net (perturbed by 1 cm noise from rest, no ball) stays below the "
            "divergence speed, by bisection on a log scale between 0.01 ms and 50 ms "
-           "(`netgym/bench/stability_limits.py`), beside the linear estimate: the spectral radius of each method's "
+           "(`netgym/bench/accuracy/stability_limits.py`), beside the linear estimate: the spectral radius of each method's "
            "step on the net's fastest mode, found by power iteration; for imex_euler, whose dampers are a Gauss-Seidel sweep rather than a force, the "
            "linearised step on the whole net, its sweep included: stable while lambda_max(h^2 F K F^T - 2 F F^T + "
            "2 I) < 2 + 2 / keep, F the forward damper pass (`netgym/physics/model/stability.py`).",

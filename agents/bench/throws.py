@@ -7,13 +7,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from netgym.bench.accuracy.fast_path import Throw
 from netgym.launch import action_to_launch, launch_velocity, sample_thrower
 from netgym.physics.simulator import Simulator
 
 if TYPE_CHECKING:
     from agents.oracle import BallisticOracle
 
-Throw = tuple[np.ndarray, np.ndarray]  # (launch position, launch velocity)
 
 
 def ballistic_oracle(scene: str) -> BallisticOracle:

@@ -12,7 +12,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium.vector import AutoresetMode, SyncVectorEnv
 
-from netgym.bench.throws import ballistic_oracle
+from agents.bench.throws import ballistic_oracle
 
 SETUPS = {
     "sync": 'Gymnasium SyncVectorEnv of gym.make("NetCatch-v0"), one process',
