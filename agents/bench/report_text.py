@@ -65,16 +65,16 @@ DESIGN_ITEMS = (
     "back to Python only when something could be decided (`watch.integrate_watched`): 2.1 Python decisions per "
     "shipped-PPO throw, against 11.7 with a Python check after every 10 ms chunk.",
     "- The spring kernels: springs in wavefront order (`netgym.physics.model.springs.wavefront_order`), the force pass "
-    "over springs grouped by index offset on cache-line-aligned columns (`tests/test_springs.py`), IMEX Euler's "
+    "over springs grouped by index offset on cache-line-aligned columns (`tests/physics/test_springs.py`), IMEX Euler's "
     "damper shares computed once per step size, unsigned 32-bit indices, numpy's floating-point error model (no "
     "zero check before each division). Each leaves every result bitwise the same (the golden episodes, "
-    "`tests/test_golden.py`); section 10 sets the resulting pass against the machine's roofs.",
+    "`tests/envs/test_golden.py`); section 10 sets the resulting pass against the machine's roofs.",
     "- A segment broad phase for ball/net contacts: only the segments whose first particle lies near the ball are "
-    "tested, bitwise the same results (`tests/test_throws.py::test_the_segment_broad_phase_changes_nothing`); "
+    "tested, bitwise the same results (`tests/physics/test_throws.py::test_the_segment_broad_phase_changes_nothing`); "
     "the ball contacts with 9 balls in the net 42.1 -> 23.9 us.",
     "- Contacts between balls resolved before each ball's supports, so that the supports' friction holds the pairs' "
     "pushes as it holds gravity: a ball resting on two others in the basket moves 0.02 mm per 2 s at 2 ms, against "
-    "12 mm in the other order (`tests/test_resting_contact.py`); no outcome, reward or reason of the golden "
+    "12 mm in the other order (`tests/physics/contacts/test_resting_contact.py`); no outcome, reward or reason of the golden "
     "episodes changed.",
     "- The pause between throws: a dynamic relaxation in one kernel, IMEX Euler at 90% of its stability limit "
     "(damper sweep included) on a net four times as heavy, its weight unchanged (the same equilibrium, half the "
@@ -209,7 +209,7 @@ CONTACT_CONVERGENCE_TEXT = (
 CONTACT_CONVERGENCE_NOTES = (
     "Reading it: before the first contact every integrator flies the ball to round-off (a free ball's flight is "
     "exact in the kernels), and between contacts the net alone converges at each method's order "
-    "(`tests/test_integrators.py`). From the first contact on, the contact model sets the order, not the "
+    "(`tests/physics/test_integrators.py`). From the first contact on, the contact model sets the order, not the "
     "integrator: contacts are resolved as impulses and position projections at the ends of steps, which is first "
     "order at best, so RK4 buys nothing over the Euler methods there. The model's exact solution is also "
     "discontinuous in its data: two impacts within one step are resolved in index order, and an impact bounces "

@@ -3,7 +3,7 @@
 A ball's acceleration is ``g - k |v - wind| (v - wind)`` with ``k = 0.5 rho C_d A / m`` (see
 :func:`~netgym.physics.model.model.ball_drag_constant`). Its flight has no closed form, so
 :func:`fly` integrates it with classical RK4 in steps of at most ``max_step`` (the fast path's
-flight; error far below the contacts' own, see ``tests/test_air.py``), with the same ground
+flight; error far below the contacts' own, see ``tests/physics/test_air.py``), with the same ground
 bounce as :mod:`netgym.physics.throw.flight`, and sliding on the ground against Coulomb friction
 with the wind pushing. :func:`rk4_step` is also the balls' free flight inside the kernels.
 """

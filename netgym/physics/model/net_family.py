@@ -16,7 +16,7 @@ that work once, on a few members of the family, and serves every draw from them:
   smallest IMEX Euler limit).
 
 Draws of other fields, of more than one stiffness, or scenes that differ from the family's in
-anything but its drawn fields are settled from scratch as before. ``tests/test_net_family.py``
+anything but its drawn fields are settled from scratch as before. ``tests/physics/test_net_family.py``
 holds the interpolated nets to nets settled from scratch, and the modes to each draw's own.
 """
 

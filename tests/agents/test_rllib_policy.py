@@ -1,5 +1,5 @@
 """Loading an RLlib checkpoint folder as a policy: what happens without one, or without Ray.
-(A real checkpoint, trained on a cluster and evaluated, is tests/test_rllib_cluster.py's.)"""
+(A real checkpoint, trained on a cluster and evaluated, is tests/agents/test_rllib_cluster.py's.)"""
 
 from __future__ import annotations
 

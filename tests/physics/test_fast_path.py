@@ -8,7 +8,7 @@ must reproduce its stored result bit for bit (outcome, reason, time, final posit
 change to the physics leaves a stale reference behind. After a change that is meant to alter
 results, regenerate the file deliberately and say so in the commit::
 
-    NETGYM_WRITE_GOLDEN=1 python -m pytest tests/test_fast_path.py
+    NETGYM_WRITE_GOLDEN=1 python -m pytest tests/physics/test_fast_path.py
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from agents.bench.throws import Throw, sample_throws
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import ThrowResult, throw
 
-STORED = Path(__file__).parent / "golden" / "full_simulation.json"
+STORED = Path(__file__).parents[1] / "golden" / "full_simulation.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
 
 # name: (scene, overrides, throws, seed, least agreement, throws simulated fully again each run)

@@ -36,7 +36,7 @@ def _write_package(root: Path, returned: int, room: str = "") -> Path:
     (pkg / room).mkdir(parents=True, exist_ok=True)
     (pkg / "__init__.py").write_text("")
     (pkg / room / "__init__.py").write_text("")
-    (pkg / "kernel_cache.py").write_text(Path(__file__).parents[1].joinpath("netgym/physics/kernel_cache.py").read_text())
+    (pkg / "kernel_cache.py").write_text(Path(__file__).parents[2].joinpath("netgym/physics/kernel_cache.py").read_text())
     callee = ".".join(["pkg", *([room] if room else []), "callee"])
     (pkg / "caller.py").write_text(textwrap.dedent(CALLER).replace("pkg.callee", callee))
     (pkg / room / "callee.py").write_text(textwrap.dedent(CALLEE.format(returned)))

@@ -6,7 +6,7 @@ count and a digest of the whole simulator state after each step.
 The recorded actions are replayed, so the test needs no agent. After a change that is meant to
 alter results, regenerate the file deliberately and say so in the commit::
 
-    NETGYM_WRITE_GOLDEN=1 python -m pytest tests/test_golden.py
+    NETGYM_WRITE_GOLDEN=1 python -m pytest tests/envs/test_golden.py
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import pytest
 
 from netgym.envs import NetCatchEnv
 
-GOLDEN = Path(__file__).parent / "golden" / "episodes.json"
+GOLDEN = Path(__file__).parents[1] / "golden" / "episodes.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
 BALLS = 3
 

@@ -20,7 +20,7 @@ import netgym
 from agents.bench import report
 from netgym.launch import LAUNCH_ENTRIES
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "docs" / "_scripts"))
 
 import env_cards  # noqa: E402

@@ -18,7 +18,6 @@ falling to 0.00 while their shaped return rose.
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 import re
@@ -31,21 +30,15 @@ from pathlib import Path
 import pytest
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
+from agents.rllib_training import build_parser
+
+ROOT = Path(__file__).resolve().parents[2]
 
 REQUIRE_RAY = "NETGYM_REQUIRE_RAY"
 ITERATIONS = 24
 BATCH = 512
 LEARNED_RUNS = (0.63, 0.98, 0.62, 0.49)  # mean training capture rate of the last three iterations, measured runs
 LEARNED = min(LEARNED_RUNS) / 3  # 0.16: over four times random actions' 0.038
-
-
-def _train_rllib_script():
-    """scripts/train_rllib.py as a module (it imports ray only when it trains)."""
-    spec = importlib.util.spec_from_file_location("train_rllib", ROOT / "scripts" / "train_rllib.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 RECIPES = {"ray-cluster.yaml": ("metadata", "entrypoint"), "rayjob.yaml": ("spec", "entrypoint")}
@@ -172,7 +165,7 @@ def test_cluster_recipe_entrypoint_is_train_rllib_command_line(recipe: str) -> N
     section, key = RECIPES[recipe]
     words = shlex.split(config[section][key])
     assert words[:2] == ["python", "scripts/train_rllib.py"], words
-    args = _train_rllib_script().build_parser().parse_args(words[2:])  # exits (SystemExit) on an unknown option
+    args = build_parser().parse_args(words[2:])  # exits (SystemExit) on an unknown option
     assert args.address == "auto" and args.env_runners > 0
     assert config[section][key] in (ROOT / "docs" / "cluster.md").read_text()  # the docs run the same
 

@@ -22,7 +22,7 @@ from agents.windy_throws import (BLIND_AIM, WINDY, AimedOracle, FirstThrowAim, S
 from netgym.bench.results import read_results
 from netgym.envs import ObservationIndex
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _blind(env):

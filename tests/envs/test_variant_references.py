@@ -9,7 +9,7 @@ held to them, and a sample is simulated fully again and must reproduce its store
 bit. After a change meant to alter results, regenerate the file deliberately and say so in the
 commit::
 
-    NETGYM_WRITE_GOLDEN=1 python -m pytest -n 0 tests/test_variant_references.py
+    NETGYM_WRITE_GOLDEN=1 python -m pytest -n 0 tests/envs/test_variant_references.py
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from agents.oracle import BallisticOracle
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import ThrowResult, throw
 
-STORED = Path(__file__).parent / "golden" / "variant_references.json"
+STORED = Path(__file__).parents[1] / "golden" / "variant_references.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
 VARIANTS = ("NetCatchWindy-v0", "NetCatchNoisy-v0", "NetCatchRandomized-v0")
 THROWS = 500

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import gymnasium as gym
@@ -97,10 +96,10 @@ def test_a_flight_is_cut_at_the_rules_first_decision() -> None:
     assert LineRule().decision_instant(0.2, decided_at, 1e-4) == 0.2
 
 
-def test_the_fast_path_tuning_is_one_frozen_record() -> None:
+def test_the_fast_path_tuning_keeps_its_margins_in_order() -> None:
+    """A ball is simulated before it can touch anything the awake net may reach, and two instants
+    the same to the clock are closer than the capture rule's own tolerance."""
     assert TUNING.clearance < TUNING.awake_margin and TUNING.time_epsilon < TUNING.line_time_tolerance
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        TUNING.clearance = 1.0  # type: ignore[misc]
 
 
 def test_a_film_records_each_instant_once() -> None:

@@ -13,7 +13,7 @@ from agents.evaluation import evaluate, wilson_interval
 from agents.model_env import EnvMismatchError, ModelEnv, model_env, saved_env
 from agents.policies import PRETRAINED, PRETRAINED_WINDY_STACKED, FrameStackPolicy, load_policy, policy_in_env
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.parametrize("scene", ["basket", "goal"])
@@ -104,7 +104,7 @@ def test_ppo_settings_accepted_by_sb3_and_rllib() -> None:
     from agents import hyperparams
 
     assert set(hyperparams.PPO_PARAMS) <= set(inspect.signature(PPO).parameters)
-    text = (ROOT / "scripts" / "train_rllib.py").read_text()
+    text = (ROOT / "agents" / "rllib_training.py").read_text()
     assert "rllib_training()" in text and "ENV_KWARGS" in text
     try:
         from ray.rllib.algorithms.ppo import PPOConfig

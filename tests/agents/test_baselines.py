@@ -27,7 +27,7 @@ from agents.policies import policy_in_env, saved_algorithm
 from netgym.bench.results import read_results, write_results
 from netgym.errors import InvalidArgumentError
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_iqm_is_the_mean_of_the_middle_half() -> None:
@@ -218,7 +218,7 @@ def test_quick_mode_runs_the_quick_grid_end_to_end(tmp_path: Path) -> None:
 @pytest.mark.slow
 def test_runs_go_to_a_ray_cluster_as_tasks_with_address(tmp_path: Path) -> None:
     """``--address``: the same runs as Ray tasks on a local two-node cluster (in a network
-    namespace of its own, as tests/test_rllib_cluster.py starts it), their results written here."""
+    namespace of its own, as tests/agents/test_rllib_cluster.py starts it), their results written here."""
     from test_rllib_cluster import _needs_cluster
 
     _needs_cluster()
