@@ -15,6 +15,7 @@ from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError, InvalidArgumentError
 from netgym.envs.observation import ObservationIndex
+from netgym.envs.rendering import EnvRendering
 from netgym.envs.reset_options import checked_reset_options
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
@@ -45,7 +46,7 @@ def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float, fee
     return spaces.Box(np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32)
 
 
-class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
+class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
     """Throw balls so that a mass-spring goal net catches them.
 
     A thrower stands at a random place around the net (default scene ``basket``: an open-top
@@ -377,60 +378,3 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
                 "settle_substeps": settle_substeps, "settle_time": settle_time,
                 "launch_position": launch, "launch_velocity": velocity, "aimed_velocity": aimed,
                 "wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
-
-    # ------------------------------------------------------------------ rendering
-    def _get_renderer(self):
-        if self._renderer is None:
-            from netgym.view.render import Renderer
-
-            self._renderer = Renderer(self.sim, human=self.render_mode == "human", fps=self.metadata["render_fps"])
-        return self._renderer
-
-    def _record_frame(self, sim: Simulator) -> None:
-        """Take a frame of ``sim`` as the render mode asks (the env's :class:`Film` records at its instants)."""
-        if self.render_mode == "replay_list":
-            if self._scenery is None:
-                self._scenery = Scenery.of(sim)
-            thrower = None if self.thrower is None else self.thrower.position
-            self._frames.append(Snapshot.of(sim, self._scenery, thrower))
-        elif self.render_mode == "rgb_array_list":
-            self._frames.append(self._draw())
-        else:
-            self._get_renderer().show(self._draw())
-
-    def _draw(self) -> np.ndarray:
-        """A frame of the scene now, with the thrower, the camera framing the current throw."""
-        renderer = self._get_renderer()
-        if self.thrower is not None:
-            renderer.film(self.sim, self.thrower.position, self._flight)
-        return renderer.draw(self.sim)
-
-    def _renderer_show(self) -> None:
-        self._get_renderer().show(self._draw())
-
-    def render(self) -> np.ndarray | list[np.ndarray] | list[Snapshot] | None:
-        """``rgb_array``: the current frame (H, W, 3) uint8; ``rgb_array_list``: the frames since
-        the last render or reset; ``replay_list``: the :class:`~netgym.view.replay.Snapshot` of each of
-        those instants; ``human``: shows the current frame, returns None. Frames show the current
-        thrower and follow the throw being simulated."""
-        if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; pass render_mode to make()")
-            return None
-        if self.render_mode == "rgb_array":
-            return self._draw()
-        if self.render_mode in ("rgb_array_list", "replay_list"):
-            frames, self._frames = self._frames, []
-            return frames
-        self._renderer_show()
-        return None
-
-    def close(self) -> None:
-        """Release the window, if any; safe to call more than once."""
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
-
-    def __getstate__(self) -> dict:
-        state = self.__dict__.copy()
-        state["_renderer"] = None  # windows and fonts do not travel; a new one opens on demand
-        return state

@@ -11,7 +11,7 @@ import pytest
 from netgym.errors import UnstableTimeStepError
 from netgym.physics.throw import flight
 from netgym.physics.kernels import stepping
-from netgym.physics.kernels.contacts import Materials, Poles
+from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import Contact, Integrator
 from netgym.physics.model.model import KernelModel, Settings

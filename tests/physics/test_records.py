@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from netgym.config import load_scene
-from netgym.physics.kernels.contacts import Materials
+from netgym.physics.model.contact_tables import Materials
 from netgym.physics.integration import RestTest
 from netgym.kinds import Contact
 from netgym.physics.model.model import Model

@@ -134,7 +134,7 @@ def test_remove_ball_checks_its_index() -> None:
 
 
 def test_clearance_is_the_distance_to_the_nearest_obstacle() -> None:
-    from netgym.physics.kernels.contacts import clearance
+    from netgym.physics.throw.approach import clearance
 
     sim = _sim("basket")
     m = sim.model

@@ -27,7 +27,6 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.physics.kernels.jit import inline_kernel, kernel
-from netgym.kinds import Contact
 from netgym.physics.kernels.rows import add_scaled
 
 
@@ -45,28 +44,6 @@ class Bodies(NamedTuple):
     start: np.ndarray
 
 
-class Material(NamedTuple):
-    """How a kind of contact responds: its coefficient of ``restitution`` and its Coulomb ``friction``."""
-
-    restitution: float
-    friction: float
-
-
-class Materials(NamedTuple):
-    """The :class:`Material` of each kind of contact (one field per :class:`Contact` member)."""
-
-    ball_net: Material
-    ball_pole: Material
-    ball_ball: Material
-    ball_ground: Material
-    net_ground: Material
-
-    @classmethod
-    def of_table(cls, table: np.ndarray) -> "Materials":
-        """The materials of a (restitution, friction) table with a row per :class:`Contact` kind."""
-        return cls(*(Material(float(table[kind, 0]), float(table[kind, 1])) for kind in Contact))
-
-
 class Touch(NamedTuple):
     """Where two bodies touch: the unit normal (nx, ny, nz) and the ``depth`` of the overlap along it."""
 
@@ -74,19 +51,6 @@ class Touch(NamedTuple):
     ny: float
     nz: float
     depth: float
-
-
-class Poles(NamedTuple):
-    """The poles, capsules: pole p runs from ``start[p]`` to ``end[p]`` (m) with ``radius[p]``."""
-
-    start: np.ndarray
-    end: np.ndarray
-    radius: np.ndarray
-
-    @classmethod
-    def none(cls) -> "Poles":
-        """No poles at all."""
-        return cls(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0))
 
 
 @kernel
@@ -130,7 +94,7 @@ def _static_slip(sx, sy, sz, nx, ny, nz, bound):
 @kernel
 def _pair_response(bodies, a, i, j, t, touch, material, threshold):
     """Resolve a contact between body ``a`` and the point ``(1-t) x_i + t x_j`` of
-    :class:`Bodies`, of a :class:`Material`.
+    :class:`Bodies`, of a :class:`~netgym.physics.model.contact_tables.Material`.
 
     The :class:`Touch`'s normal ``n`` points from ``a`` to the point; its ``depth`` is the
     overlap along it. A single body as the second side is ``i == j`` with ``t = 0``. A resting
@@ -221,7 +185,7 @@ def _static_response(bodies, k, touch, material, threshold, hold):
 
 @kernel
 def _ball_poles(bodies, b, radius, poles, material, threshold):
-    """Resolve ball ``b`` (of ``radius``) against every one of the :class:`Poles`."""
+    """Resolve ball ``b`` (of ``radius``) against every one of the :class:`~netgym.physics.model.contact_tables.Poles`."""
     x = bodies.x
     for p in range(poles.radius.shape[0]):
         ax, ay, az = poles.start[p, 0], poles.start[p, 1], poles.start[p, 2]
@@ -402,38 +366,3 @@ def resolve_ground(bodies, model):
         if x[k, 2] < floor and inv_mass[k] > 0.0:
             material = materials.ball_ground if k >= n_net else materials.net_ground
             _static_response(bodies, k, Touch(0.0, 0.0, 1.0, floor - x[k, 2]), material, threshold, k >= n_net)
-
-
-@kernel
-def clearance(x, n_net, row, radius, segments, poles):
-    """How far the ball in ``row`` can move before it could touch a net particle or structural
-    spring segment, a pole or another ball, all held still (exact distances). Negative when it
-    already touches."""
-    cx, cy, cz = x[row, 0], x[row, 1], x[row, 2]
-    nearest = math.inf
-    for k in range(n_net):
-        nearest = min(nearest, (x[k, 0] - cx) ** 2 + (x[k, 1] - cy) ** 2 + (x[k, 2] - cz) ** 2)
-    for s in range(segments.shape[0]):
-        i = segments[s, 0]
-        j = segments[s, 1]
-        ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
-        len2 = ex * ex + ey * ey + ez * ez
-        if len2 < COINCIDENT:
-            continue
-        t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
-        t = min(max(t, 0.0), 1.0)
-        nearest = min(nearest, (x[i, 0] + t * ex - cx) ** 2 + (x[i, 1] + t * ey - cy) ** 2
-                      + (x[i, 2] + t * ez - cz) ** 2)
-    gap = math.sqrt(nearest) - radius
-    for p in range(poles.radius.shape[0]):
-        ax, ay, az = poles.start[p, 0], poles.start[p, 1], poles.start[p, 2]
-        ex, ey, ez = poles.end[p, 0] - ax, poles.end[p, 1] - ay, poles.end[p, 2] - az
-        t = ((cx - ax) * ex + (cy - ay) * ey + (cz - az) * ez) / (ex * ex + ey * ey + ez * ez)
-        t = min(max(t, 0.0), 1.0)
-        d = math.sqrt((cx - ax - t * ex) ** 2 + (cy - ay - t * ey) ** 2 + (cz - az - t * ez) ** 2)
-        gap = min(gap, d - radius - poles.radius[p])
-    for b in range(n_net, x.shape[0]):
-        if b != row:
-            d = math.sqrt((x[b, 0] - cx) ** 2 + (x[b, 1] - cy) ** 2 + (x[b, 2] - cz) ** 2)
-            gap = min(gap, d - 2.0 * radius)
-    return gap

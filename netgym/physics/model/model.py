@@ -15,7 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.config import SceneConfig, SimulationConfig
-from netgym.physics.kernels.contacts import Materials, Poles
+from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.kinds import Contact, Integrator, SpringKind
 from netgym.physics.model.net import NetGeometry, build_net
 from netgym.physics.model.opening import Opening, OpeningRecord
@@ -107,7 +107,7 @@ class Model:
     ``segments`` are the structural springs, against which balls collide (not only the
     particles: springs never sink into a ball), in order of their first particle, and
     ``segment_start`` where each particle's begin (:func:`index_segments`). ``poles`` are the
-    capsules (:class:`~netgym.physics.kernels.contacts.Poles`). ``contact`` rows are (restitution, friction) per
+    capsules (:class:`~netgym.physics.model.contact_tables.Poles`). ``contact`` rows are (restitution, friction) per
     :class:`Contact` kind. ``kernel`` is the same in the form the kernels take.
     """
 

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from netgym.physics.kernels import air
-from netgym.physics.kernels.contacts import clearance
+from netgym.physics.kernels.contacts import COINCIDENT
 from netgym.physics.throw.flight import ground_time, sliding
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_depth
@@ -150,3 +150,38 @@ def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
             u[c] = end_v[c]
         _move_ball(x, before, n_net, entered, opening, p, end_p)
         t = t + tau
+
+
+@kernel
+def clearance(x, n_net, row, radius, segments, poles):
+    """How far the ball in ``row`` can move before it could touch a net particle or structural
+    spring segment, a pole or another ball, all held still (exact distances). Negative when it
+    already touches."""
+    cx, cy, cz = x[row, 0], x[row, 1], x[row, 2]
+    nearest = math.inf
+    for k in range(n_net):
+        nearest = min(nearest, (x[k, 0] - cx) ** 2 + (x[k, 1] - cy) ** 2 + (x[k, 2] - cz) ** 2)
+    for s in range(segments.shape[0]):
+        i = segments[s, 0]
+        j = segments[s, 1]
+        ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
+        len2 = ex * ex + ey * ey + ez * ez
+        if len2 < COINCIDENT:
+            continue
+        t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
+        t = min(max(t, 0.0), 1.0)
+        nearest = min(nearest, (x[i, 0] + t * ex - cx) ** 2 + (x[i, 1] + t * ey - cy) ** 2
+                      + (x[i, 2] + t * ez - cz) ** 2)
+    gap = math.sqrt(nearest) - radius
+    for p in range(poles.radius.shape[0]):
+        ax, ay, az = poles.start[p, 0], poles.start[p, 1], poles.start[p, 2]
+        ex, ey, ez = poles.end[p, 0] - ax, poles.end[p, 1] - ay, poles.end[p, 2] - az
+        t = ((cx - ax) * ex + (cy - ay) * ey + (cz - az) * ez) / (ex * ex + ey * ey + ez * ez)
+        t = min(max(t, 0.0), 1.0)
+        d = math.sqrt((cx - ax - t * ex) ** 2 + (cy - ay - t * ey) ** 2 + (cz - az - t * ez) ** 2)
+        gap = min(gap, d - radius - poles.radius[p])
+    for b in range(n_net, x.shape[0]):
+        if b != row:
+            d = math.sqrt((x[b, 0] - cx) ** 2 + (x[b, 1] - cy) ** 2 + (x[b, 2] - cz) ** 2)
+            gap = min(gap, d - 2.0 * radius)
+    return gap

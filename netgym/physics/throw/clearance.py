@@ -6,7 +6,6 @@ import numpy as np
 
 from netgym.physics.throw import approach
 
-from netgym.physics.kernels import contacts
 from netgym.physics.kernels.surroundings import survey
 from netgym.physics.throw.records import TUNING, ThrowContext
 
@@ -15,7 +14,7 @@ def clearance(throw: ThrowContext) -> float:
     """Distance the ball can travel before it could touch the net, a pole or another ball (the
     net held still)."""
     m = throw.sim.model
-    return contacts.clearance(throw.sim.state.x, m.n_net, throw.ball.row, m.ball_radius, m.segments, m.poles)
+    return approach.clearance(throw.sim.state.x, m.n_net, throw.ball.row, m.ball_radius, m.segments, m.poles)
 
 
 def on_step_grid(throw: ThrowContext, tau: float) -> float:

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from netgym.physics.kernels import contacts
+from netgym.physics.model import contact_tables
 from netgym.kinds import Contact
 from netgym.physics.model.model import KernelModel, index_segments
 from netgym.physics.model.opening import Opening
@@ -34,8 +35,8 @@ def resolve(x: np.ndarray, v: np.ndarray, inv_mass: np.ndarray, n_net: int, segm
     box = np.concatenate([net.min(axis=0), net.max(axis=0)]) if n_net else np.array([np.inf] * 3 + [-np.inf] * 3)
     nowhere = Opening(2, 1, 100.0, (0, 1), (-1.0, -1.0), (1.0, 1.0))
     model = KernelModel(n_net=n_net, springs=Springs.of(np.zeros((0, 2)), np.zeros((0, 3)), n_net),
-                        segments=ordered, segment_start=segment_start, poles=contacts.Poles.none(),
-                        materials=contacts.Materials.of_table(coef), restitution_threshold=THRESHOLD, gravity=0.0,
+                        segments=ordered, segment_start=segment_start, poles=contact_tables.Poles.none(),
+                        materials=contact_tables.Materials.of_table(coef), restitution_threshold=THRESHOLD, gravity=0.0,
                         drag=0.0, ball_radius=RADIUS, opening=nowhere.kernel_record(), ball_drag=0.0, wind=np.zeros(3))
     bodies = contacts.Bodies(x, v, inv_mass, x.copy())
     contacts.resolve_ball_contacts(bodies, model, box, np.zeros(n_net, dtype=np.int64))
@@ -114,7 +115,7 @@ def test_the_friction_cone_holds_a_slip_within_mu_times_the_normal_impulse(share
     v = np.array([[vt, 0.0, -vn], [0.0, 0.0, 0.0]])
     start = x.copy()
     contacts._pair_response(contacts.Bodies(x, v, np.array([1.0, 0.0]), start), 0, 1, 1, 0.0,
-                            contacts.Touch(0.0, 0.0, -1.0, overlap), contacts.Material(e, mu), THRESHOLD)
+                            contacts.Touch(0.0, 0.0, -1.0, overlap), contact_tables.Material(e, mu), THRESHOLD)
     assert v[0, 2] == pytest.approx(e * vn, abs=1e-12)
     assert v[0, 0] == pytest.approx(0.0 if sticks else vt - bound, abs=1e-12)
     assert (v[0, 0] > 1e-6) == (not sticks)

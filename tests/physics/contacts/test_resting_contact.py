@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from netgym.physics.kernels import stepping
-from netgym.physics.kernels.contacts import Materials, Poles
+from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import Contact, Integrator
 from netgym.physics.model.model import KernelModel, Settings, index_segments
