@@ -25,9 +25,9 @@ from netgym.config import SceneConfig, load_scene
 from netgym.envs import ObservationIndex
 from netgym.errors import InvalidArgumentError
 from netgym.launch import Thrower, from_range, launch_velocity
-from netgym.physics import air
-from netgym.physics.model import ball_drag_constant
-from netgym.physics.opening import Opening
+from netgym.physics.kernels import air
+from netgym.physics.model.model import ball_drag_constant
+from netgym.physics.model.opening import Opening
 
 AIM_STEP = 2e-3               # s: step of the flights the oracle tries
 AIM_ITERATIONS = 8

@@ -23,7 +23,7 @@ from tqdm import tqdm
 
 import netgym
 from agents.oracle import BallisticOracle
-from netgym.bench.speed_table import BASE_ID
+from netgym.bench.speed.speed_table import BASE_ID
 
 POLICIES = ("oracle", "random")
 VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCatchPixels-v0")
@@ -122,8 +122,8 @@ PHASES = {  # phase: the functions (file suffix, name) whose cumulative time it 
     "reset": [("envs/net_catch.py", "reset")],
     "integration near the net": [("physics/integration.py", "integrate_watched"), ("physics/integration.py", "integrate")],
     "the pause": [("physics/integration.py", "relax")],
-    "flight clear of everything": [("physics/throws.py", "_fly_clear")],
-    "decision checks": [("physics/throws.py", "_decide")],
+    "flight clear of everything": [("physics/throw/clear_flight.py", "fly_clear")],
+    "decision checks": [("physics/throw/decisions.py", "after_piece")],
 }
 
 

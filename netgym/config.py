@@ -19,14 +19,14 @@ from typing import Any, Mapping
 
 from netgym.arguments import is_integer, is_real
 from netgym.errors import ConfigError
-from netgym.physics.kinds import Integrator
+from netgym.kinds import Integrator
 
 INTEGRATORS = Integrator.labels()
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
 BUILTIN_SCENES = ("basket", "goal")
 CAPTURE_RULES = ("held", "line")
-MAX_NET_PARTICLES = 20_000     # beyond this a scene takes minutes to build and settle
-MAX_SPRING_RATE = 2e9          # spring evaluations per simulated second: ~15 s of one core
+MAX_NET_PARTICLES = 20_000     # beyond this a scene is slow to build and settle
+MAX_SPRING_RATE = 2e9          # spring evaluations per simulated second beyond which a scene crawls
 SPRINGS_PER_PARTICLE = 6       # structural, shear and bending: at most two of each per particle
 
 

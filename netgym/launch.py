@@ -14,11 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from netgym.config import ThrowConfig
-from netgym.physics import air
-from netgym.physics.opening import Opening
+from netgym.physics.model.opening import Opening
 
-AIR_PATH_STEP = 5e-3          # s between the points of a flight through air that the shaped reward measures
-AIR_PATH_TIME = 10.0          # s: the longest such flight
 
 LAUNCH_ENTRIES = (("speed", "launch speed", "m/s"), ("elevation", "elevation above the horizon", "degrees"),
                   ("azimuth", "azimuth offset from the direction to the opening's centre", "degrees"))
@@ -78,41 +75,3 @@ def launch_velocity(speed: float, elevation: float, azimuth: float, thrower: Thr
     ``azimuth`` offset (degrees, to the left of the direction to the opening's centre)."""
     theta, phi = math.radians(elevation), thrower.facing + math.radians(azimuth)
     return speed * np.array([math.cos(theta) * math.cos(phi), math.cos(theta) * math.sin(phi), math.sin(theta)])
-
-
-def action_to_velocity(action: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:
-    """Launch velocity (m/s) of an action in [-1, 1]^3 = (speed, elevation, azimuth offset)."""
-    return launch_velocity(*action_to_launch(action, cfg), thrower)
-
-
-def velocity_to_action(velocity: np.ndarray, thrower: Thrower, cfg: ThrowConfig) -> np.ndarray:
-    """The action (unclipped) whose launch velocity is ``velocity``; inverse of
-    :func:`action_to_velocity` inside the ranges."""
-    speed = float(np.linalg.norm(velocity))
-    elevation = math.degrees(math.asin(velocity[2] / speed)) if speed > 0 else 0.0
-    heading = math.atan2(velocity[1], velocity[0]) - thrower.facing
-    offset = math.degrees(math.atan2(math.sin(heading), math.cos(heading)))
-    return np.array([from_range(speed, cfg.speed), from_range(elevation, cfg.elevation), from_range(offset, cfg.azimuth)])
-
-
-def opening_miss_distance(position: np.ndarray, velocity: np.ndarray, opening: Opening, gravity: float,
-                          radius: float, samples: int = 256, drag: float = 0.0,
-                          wind: np.ndarray | None = None) -> float:
-    """Closest distance between the ball's free flight (until it reaches the ground) and the
-    opening rectangle: how close a throw came, ignoring the net and poles. Without air
-    (``drag`` = 0, the k of :mod:`netgym.physics.air`) the flight is the launch parabola at
-    ``samples`` instants; with air it is flown through it, against the ``wind``, in steps of
-    AIR_PATH_STEP."""
-    p, v = np.asarray(position, dtype=float), np.asarray(velocity, dtype=float)
-    if drag > 0.0:
-        still = np.zeros(3) if wind is None else np.asarray(wind, dtype=float)
-        points = air.flight_path(p, v, gravity, drag, still, radius, AIR_PATH_STEP, AIR_PATH_TIME)
-        return float(opening.distance(points).min())
-    a, b, c = 0.5 * gravity, v[2], p[2] - radius
-    if a < 0.0:
-        landing = (-b - math.sqrt(max(b * b - 4.0 * a * c, 0.0))) / (2.0 * a)
-    else:
-        landing = 10.0
-    t = np.linspace(0.0, max(landing, 0.0), samples)[:, None]
-    points = p + v * t + np.array([0.0, 0.0, 0.5 * gravity]) * t * t
-    return float(opening.distance(points).min())

@@ -10,7 +10,7 @@ import gymnasium as gym
 import numpy as np
 
 from netgym.errors import InvalidArgumentError
-from netgym.video import EpisodeFilm
+from netgym.view.video import EpisodeFilm
 
 VIDEO_MODES = {"mp4": "rgb_array_list", "gif": "rgb_array_list", "html": "replay_list"}  # format: render mode
 
@@ -19,7 +19,7 @@ class RecordEpisodeVideo(gym.Wrapper):
     """Write a video of every episode ``episode_trigger(episode_index)`` selects (default: all),
     with every frame of every throw: NetCatch's ``rgb_array_list`` frames, ``1 / render_fps``
     simulated seconds apart, so the video plays at the simulation's pace, each captioned with
-    its throw and outcome (:class:`~netgym.video.EpisodeFilm`).
+    its throw and outcome (:class:`~netgym.view.video.EpisodeFilm`).
 
     Gymnasium's ``RecordVideo`` keeps one frame per step, and a NetCatch step is a whole throw;
     this wrapper keeps them all. Videos go to ``video_folder/{name_prefix}-episode-{i}.mp4``
@@ -82,7 +82,7 @@ class ThrowerView(gym.ObservationWrapper):
         super().__init__(env)
         if not isinstance(size, int) or not 16 <= size <= 512:
             raise InvalidArgumentError(f"size = {size!r}; allowed: an integer in [16, 512]")
-        from netgym.render import Renderer
+        from netgym.view.render import Renderer
 
         self.fov = fov
         self.renderer = Renderer(env.unwrapped.sim, size, size, supersample=1)

@@ -24,9 +24,9 @@ from __future__ import annotations
 
 import argparse
 
-from netgym.bench.env_throughput import SETUPS, env_throughput
-from netgym.bench.fast_path import CASES, compare, summarise
-from netgym.bench.throws import sample_throws
+from agents.bench.env_throughput import SETUPS, env_throughput
+from netgym.bench.accuracy.fast_path import CASES, compare, summarise
+from agents.bench.throws import sample_throws
 
 
 def main() -> None:

@@ -17,7 +17,7 @@ import dataclasses
 from pathlib import Path
 
 from netgym.arguments import parse_overrides
-from netgym.bench.episodes import run_rows, to_markdown
+from agents.bench.episodes import run_rows, to_markdown
 from netgym.bench.results import write_results
 
 

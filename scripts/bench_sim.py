@@ -18,7 +18,7 @@ from __future__ import annotations
 import argparse
 import platform
 
-from netgym.bench.sim_throughput import run, to_markdown
+from netgym.bench.speed.sim_throughput import run, to_markdown
 
 
 def main() -> None:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from agents.variant_speed import POLICIES, VECTOR_IDS, measure, profile, training_steps_per_s
 from netgym.bench.results import write_results
-from netgym.bench.speed_table import to_markdown
+from netgym.bench.speed.speed_table import to_markdown
 
 
 def main() -> None:

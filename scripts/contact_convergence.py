@@ -1,4 +1,4 @@
-"""Convergence through contact (netgym/bench/contact_convergence.py): the work-precision strike
+"""Convergence through contact (netgym/bench/accuracy/contact_convergence.py): the work-precision strike
 measured by phase (before the first contact, its first 10 ms, the rest) for every integrator
 over a ladder of halving steps, against an RK4 reference validated against itself at half its
 step; then an ensemble of strikes launched within 3 cm of it, with median and 90th-percentile
@@ -19,12 +19,12 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from netgym.bench.contact_convergence import (ENSEMBLE_OFFSET, LADDERS, QUICK_LADDERS, REFERENCE_DT, SAMPLE,
+from netgym.bench.accuracy.contact_convergence import (ENSEMBLE_OFFSET, LADDERS, QUICK_LADDERS, REFERENCE_DT, SAMPLE,
                                               ensemble_launches, measure_strike, summary)
-from netgym.bench.convergence_table import block
+from netgym.bench.accuracy.convergence_table import block
 from netgym.bench.plots import plot_contact_convergence
 from netgym.bench.results import read_results, write_results
-from netgym.bench.work_precision import STRIKE, STRIKE_SECONDS
+from netgym.bench.accuracy.work_precision import STRIKE, STRIKE_SECONDS
 from netgym.physics.simulator import Simulator
 
 

@@ -20,7 +20,7 @@ import argparse
 from pathlib import Path
 
 from netgym.arguments import parse_overrides
-from netgym.bench.episode_agreement import agreement_table, load, reference, save
+from agents.bench.episode_agreement import agreement_table, load, reference, save
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -19,7 +19,7 @@ import argparse
 import os
 from pathlib import Path
 
-from netgym.bench.first_step import add_runs, cold_and_warm, run_figures
+from agents.bench.first_step import add_runs, cold_and_warm, run_figures
 
 
 def main() -> None:

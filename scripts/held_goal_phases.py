@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import argparse
 
-from netgym.bench.held_goal import held_captures, summary
+from agents.bench.held_goal import held_captures, summary
 
 
 def main() -> None:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 
 from netgym.arguments import parse_overrides
-from netgym.bench.pause_accuracy import pause_accuracy, to_markdown
+from netgym.bench.accuracy.pause_accuracy import pause_accuracy, to_markdown
 
 
 def main() -> None:

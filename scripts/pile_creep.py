@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import argparse
 
-from netgym.bench.creep import DTS, NETS, QUICK_DTS, QUICK_NETS, creep, to_markdown
+from netgym.bench.accuracy.creep import DTS, NETS, QUICK_DTS, QUICK_NETS, creep, to_markdown
 
 
 def main() -> None:

@@ -32,7 +32,7 @@ import argparse
 from pathlib import Path
 
 from netgym.bench.plots import plot_outcomes, plot_work_precision
-from netgym.bench.report import load, measure, save, to_markdown
+from agents.bench.report import load, measure, save, to_markdown
 
 
 def main() -> None:

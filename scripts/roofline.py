@@ -15,7 +15,7 @@ import argparse
 from pathlib import Path
 
 from netgym.bench.results import write_results
-from netgym.bench.roofline import roofline
+from netgym.bench.speed.roofline import roofline
 
 
 def main() -> None:

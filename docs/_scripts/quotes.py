@@ -26,7 +26,8 @@ sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
 from agents.baselines import report as baselines  # noqa: E402
-from netgym.bench import convergence_table, roofline, speed_table  # noqa: E402
+from netgym.bench.accuracy import convergence_table
+from netgym.bench.speed import roofline, speed_table  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
 
 REPORT = "docs/BENCHMARKS.md"
@@ -177,7 +178,7 @@ def rllib_throughput() -> str:
 
 def first_step() -> str:
     """How long a first run waits for the kernels to compile, and a later one for the cache."""
-    from netgym.bench import first_step_text
+    from agents.bench import first_step_text
 
     return first_step_text.block(RESULTS / "first_step.json")
 

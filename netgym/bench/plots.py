@@ -104,13 +104,13 @@ def plot_contact_convergence(many: dict, path: Path) -> None:
     """Log-log ensemble error against dt, one panel per phase after the first contact (median
     lines, 90th-percentile bands), one line per integrator, with the reference's median
     self-difference and a first-order slope to read the others against; ``many``: a
-    :func:`~netgym.bench.contact_convergence.summary`."""
+    :func:`~netgym.bench.accuracy.contact_convergence.summary`."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from netgym.bench.contact_convergence import PHASES
+    from netgym.bench.accuracy.contact_convergence import PHASES
 
     phases = PHASES[1:]  # before the contact every method is at round-off
     fig, axes = plt.subplots(1, len(phases), figsize=(11, 4.6), sharey=True)

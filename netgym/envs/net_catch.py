@@ -15,18 +15,20 @@ from netgym.arguments import is_integer, is_real
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError, InvalidArgumentError
 from netgym.envs.observation import ObservationIndex
+from netgym.envs.rendering import EnvRendering
+from netgym.envs.reset_options import checked_reset_options
 from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
                                   throw_feedback)
-from netgym.launch import Thrower, action_to_launch, launch_velocity, opening_miss_distance, sample_thrower
-from netgym.physics.frames import Film, FrameClock
-from netgym.physics.net_family import NetFamily, family_of
+from netgym.launch import Thrower, action_to_launch, launch_velocity, sample_thrower
+from netgym.physics.film import Film, FrameClock
+from netgym.physics.model.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
-from netgym.physics.throws import ThrowResult
-from netgym.replay import Scenery, Snapshot
+from netgym.physics.pause import Pause, pause
+from netgym.physics.throw import FreeFlight, ThrowResult, throw
+from netgym.view.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
 FILMED_MODES = ("human", "rgb_array_list", "replay_list")   # render modes that take every frame of a throw
-RESET_OPTIONS = ("overrides", "thrower")
 SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
 SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
 
@@ -44,7 +46,7 @@ def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float, fee
     return spaces.Box(np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32)
 
 
-class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
+class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
     """Throw balls so that a mass-spring goal net catches them.
 
     A thrower stands at a random place around the net (default scene ``basket``: an open-top
@@ -108,7 +110,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     | ``dt`` | scene's | integration step (s) |
     | ``balls_per_episode`` | 3 | throws per episode |
     | ``reward_mode`` | ``"sparse"`` | ``"sparse"`` or ``"shaped"`` |
-    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"``, ``"replay_list"`` (3D positions instead of pixels: :mod:`netgym.replay`) |
+    | ``render_mode`` | None | ``"human"``, ``"rgb_array"``, ``"rgb_array_list"``, ``"replay_list"`` (3D positions instead of pixels: :mod:`netgym.view.replay`) |
     | ``fast`` | True | decide throws early and skip what does not matter (False: full simulation to the time limit) |
     | ``overrides`` | None | more scene fields, e.g. ``{"simulation.time_limit": 4.0}`` |
     | ``render_settling`` | False | ``rgb_array_list``/``human``: also film the net settling between throws |
@@ -246,7 +248,7 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
         Bad options raise a ValueError (or ConfigError) and leave the env as it was.
         """
-        options = self._check_options(options)
+        options = checked_reset_options(options, self.scene.throw)
         overrides = dict(options.get("overrides", self._overrides))
         scene = self._base_scene.replace(overrides) if overrides else self._base_scene  # bad overrides fail here
         super().reset(seed=seed)
@@ -271,40 +273,6 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             self._film.clock.restart(self.sim.state.time)
             self._film(self.sim)
         return self._observation(), {"wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
-
-    def _check_options(self, options: Any) -> dict[str, Any]:
-        """Validate reset options (see :meth:`reset`) before anything changes."""
-        if options is None:
-            return {}
-        if not isinstance(options, Mapping):
-            raise InvalidArgumentError(f"options must be a dict or None, got {type(options).__name__}")
-        unknown = sorted(set(map(str, options)) - set(RESET_OPTIONS))
-        if unknown:
-            raise InvalidArgumentError(f"unknown reset option(s) {unknown}; NetCatch-v0 takes {list(RESET_OPTIONS)}")
-        thrower = options.get("thrower", {})
-        if not isinstance(thrower, Mapping):
-            raise InvalidArgumentError(f"options['thrower'] must be a dict, got {type(thrower).__name__}")
-        ranges = {"distance": self.scene.throw.distance, "bearing": self.scene.throw.bearing,
-                  "height": self.scene.throw.height}
-        for key, value in thrower.items():
-            if key not in ranges:
-                raise InvalidArgumentError(f"options['thrower'] has unknown key {key!r}; allowed: {list(ranges)}")
-            lo, hi = ranges[key]
-            if not is_real(value) or not lo <= float(value) <= hi:
-                raise InvalidArgumentError(f"options['thrower']['{key}'] = {value!r}; "
-                                           f"allowed: a number in [{lo:g}, {hi:g}]")
-        overrides = options.get("overrides", {})
-        if not isinstance(overrides, Mapping):
-            raise InvalidArgumentError(f"options['overrides'] must be a dict, got {type(overrides).__name__}")
-        if any(str(field).startswith("throw.") for field in overrides):
-            raise InvalidArgumentError("options['overrides'] may not change the throw ranges (they define the spaces); "
-                                       "make a new env with those overrides instead")
-        checked: dict[str, Any] = {}
-        if "thrower" in options:
-            checked["thrower"] = {k: float(v) for k, v in thrower.items()}
-        if "overrides" in options:
-            checked["overrides"] = dict(overrides)
-        return checked
 
     def _set_scene(self, config: SceneConfig, family: NetFamily | None = None) -> None:
         """Simulate ``config`` from now on (a member of ``family``, nets drawn per episode, if
@@ -333,11 +301,11 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
             launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
         self._flight = velocity
-        result = self.sim.throw(launch, velocity, fast=self.fast, observer=self._film)
-        pause = None
+        result = throw(self.sim, launch, velocity, fast=self.fast, film=self._film)
+        settled = Pause()
         if self._throws_done + 1 < self.balls_per_episode:  # the net settles for the next throw (none after the last)
-            pause = self.sim.run(self.sim.pause_plan(), self._film)
-        return self.after_throw(launch, velocity, result, aimed, pause)
+            settled = pause(self.sim, self._film)
+        return self.after_throw(launch, velocity, result, aimed, settled)
 
     def _intended_launch(self, action: np.ndarray) -> tuple[float, float, float]:
         """Validate an action; its (speed, elevation, azimuth offset), values clipped to [-1, 1]."""
@@ -353,18 +321,18 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
 
     def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
                     aimed: np.ndarray | None = None,
-                    pause: Mapping[str, float] | None = None) -> tuple[np.ndarray, float, bool, bool, dict]:
+                    settled: Pause = Pause()) -> tuple[np.ndarray, float, bool, bool, dict]:
         """Book a finished throw, term by term: :meth:`_reward` (with :meth:`_shaping` for a
         miss), :meth:`_feedback`, :meth:`_terminated`, :meth:`_next_thrower`, then the observation
         and :meth:`_info` (``aimed``: the velocity the action meant, before launch noise;
-        ``pause``: what :meth:`~netgym.physics.simulator.Simulator.pause_plan` returned after the throw)."""
+        ``settled``: the :class:`~netgym.physics.pause.Pause` after the throw)."""
         self._throws_done += 1
         self._caught += int(result.captured)
         reward = self._reward(launch, velocity, result.captured)
         self._feedback(launch, velocity, result.captured)
         terminated = self._terminated()
         self._next_thrower(terminated)
-        info = self._info(launch, velocity, result, velocity if aimed is None else aimed, pause)
+        info = self._info(launch, velocity, result, velocity if aimed is None else aimed, settled)
         if self.render_mode == "human":
             self._renderer_show()
         return self._observation(), reward, terminated, False, info
@@ -378,9 +346,8 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
     def _shaping(self, launch: np.ndarray, velocity: np.ndarray) -> float:
         """A miss's reward in ``shaped`` mode: SHAPED_MAX x exp(-d / SHAPED_SCALE), ``d`` the
         closest distance between the ball's free flight and the opening."""
-        m = self.sim.model
-        miss = opening_miss_distance(launch, velocity, self.sim.opening, m.gravity, m.ball_radius,
-                                     drag=m.ball_drag, wind=m.wind)
+        miss = FreeFlight.of(self.sim.model).miss_distance(self.sim.opening, launch, velocity,
+                                                           self.sim.config.simulation.time_limit)
         return SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
 
     def _feedback(self, launch: np.ndarray, velocity: np.ndarray, captured: bool) -> None:
@@ -400,71 +367,14 @@ class NetCatchEnv(gym.Env[np.ndarray, np.ndarray]):
         self._flight = None
 
     def _info(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult, aimed: np.ndarray,
-              pause: Mapping[str, float] | None) -> dict[str, Any]:
+              settled: Pause) -> dict[str, Any]:
         """The step's info (see the class docstring): the throw's outcome and its work, the
-        settling before it and after it (``pause``), the launch, the wind and the scene's draws."""
-        settle_substeps = result.settle_substeps + (pause["settle_substeps"] if pause else 0)
-        settle_time = result.settle_time + (pause["settle_time"] if pause else 0.0)
+        settling before it and after it (``settled``), the launch, the wind and the scene's draws."""
+        settle_substeps = result.settle_substeps + settled.substeps
+        settle_time = result.settle_time + settled.time
         return {"captured": result.captured, "reason": result.reason,
                 "final_position": result.final_position, "sim_time": result.time,
                 "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
                 "settle_substeps": settle_substeps, "settle_time": settle_time,
                 "launch_position": launch, "launch_velocity": velocity, "aimed_velocity": aimed,
                 "wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}
-
-    # ------------------------------------------------------------------ rendering
-    def _get_renderer(self):
-        if self._renderer is None:
-            from netgym.render import Renderer
-
-            self._renderer = Renderer(self.sim, human=self.render_mode == "human", fps=self.metadata["render_fps"])
-        return self._renderer
-
-    def _record_frame(self, sim: Simulator) -> None:
-        """Take a frame of ``sim`` as the render mode asks (the env's :class:`Film` records at its instants)."""
-        if self.render_mode == "replay_list":
-            if self._scenery is None:
-                self._scenery = Scenery.of(sim)
-            thrower = None if self.thrower is None else self.thrower.position
-            self._frames.append(Snapshot.of(sim, self._scenery, thrower))
-        elif self.render_mode == "rgb_array_list":
-            self._frames.append(self._draw())
-        else:
-            self._get_renderer().show(self._draw())
-
-    def _draw(self) -> np.ndarray:
-        """A frame of the scene now, with the thrower, the camera framing the current throw."""
-        renderer = self._get_renderer()
-        if self.thrower is not None:
-            renderer.film(self.sim, self.thrower.position, self._flight)
-        return renderer.draw(self.sim)
-
-    def _renderer_show(self) -> None:
-        self._get_renderer().show(self._draw())
-
-    def render(self) -> np.ndarray | list[np.ndarray] | list[Snapshot] | None:
-        """``rgb_array``: the current frame (H, W, 3) uint8; ``rgb_array_list``: the frames since
-        the last render or reset; ``replay_list``: the :class:`~netgym.replay.Snapshot` of each of
-        those instants; ``human``: shows the current frame, returns None. Frames show the current
-        thrower and follow the throw being simulated."""
-        if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; pass render_mode to make()")
-            return None
-        if self.render_mode == "rgb_array":
-            return self._draw()
-        if self.render_mode in ("rgb_array_list", "replay_list"):
-            frames, self._frames = self._frames, []
-            return frames
-        self._renderer_show()
-        return None
-
-    def close(self) -> None:
-        """Release the window, if any; safe to call more than once."""
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
-
-    def __getstate__(self) -> dict:
-        state = self.__dict__.copy()
-        state["_renderer"] = None  # windows and fonts do not travel; a new one opens on demand
-        return state

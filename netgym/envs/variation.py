@@ -12,10 +12,10 @@ import numpy as np
 from netgym.arguments import is_real
 from netgym.config import SceneConfig
 from netgym.errors import InvalidArgumentError
-from netgym.physics import air
+from netgym.physics.kernels import air
 from netgym.physics.simulator import Simulator
+from netgym.physics.throw.free_flight import FreeFlight
 
-FEEDBACK_STEP = 2e-3      # s: step of the free flight that finds where a throw passed the opening
 FEEDBACK_LIMIT = 10.0     # m: feedback offsets are clipped to this
 
 
@@ -112,11 +112,9 @@ def throw_feedback(sim: Simulator, launch: np.ndarray, velocity: np.ndarray, cap
     """The :data:`FEEDBACK_SIZE` entries of a throw: its free flight from the launch (through
     the scene's air, without the net) meets the opening's plane somewhere; where, relative to
     the opening's centre."""
-    m, opening = sim.model, sim.opening
-    point, crossed = air.plane_crossing(np.asarray(launch, dtype=np.float64), np.asarray(velocity, dtype=np.float64),
-                                        air.Plane(opening.axis, opening.plane, -opening.sign), m.gravity,
-                                        m.ball_drag, m.wind, m.ball_radius, FEEDBACK_STEP,
-                                        sim.config.simulation.time_limit)
+    opening = sim.opening
+    point, crossed = FreeFlight.of(sim.model).plane_crossing(air.Plane(opening.axis, opening.plane, -opening.sign),
+                                                             launch, velocity, sim.config.simulation.time_limit)
     u, w = opening.tangent_axes
     centre = opening.centre
     short = 0.0 if crossed else abs(point[opening.axis] - opening.plane)

@@ -3,9 +3,10 @@
 numba checks a cached kernel only against the source file it is defined in, not against the
 files of the kernels it calls: after an edit of ``integrators.py`` (an editable install updated
 by ``git pull``, say), the cached ``stepping.advance`` would go on running the old integrator.
-:func:`drop_stale_kernels` therefore keys the whole folder's cache on a hash of all its sources,
-wherever numba keeps that cache: next to the sources, under ``NUMBA_CACHE_DIR``, or in the
-user-wide cache numba falls back to when the install folder cannot be written.
+:func:`drop_stale_kernels` therefore keys the cache of a folder and all its subfolders (the
+package's rooms) on a hash of all their sources, wherever numba keeps that cache: next to the
+sources, under ``NUMBA_CACHE_DIR``, or in the user-wide cache numba falls back to when the install
+folder cannot be written.
 """
 
 from __future__ import annotations
@@ -33,22 +34,30 @@ def numba_cache_folder(folder: Path) -> Path | None:
 
 
 def drop_stale_kernels(folder: Path) -> None:
-    """Delete every cached numba kernel of ``folder``'s sources when any ``*.py`` source of
-    ``folder`` changed since the cache was stamped, so that all kernels recompile together.
-    Does nothing where numba caches nothing (or the cache cannot be written)."""
+    """Delete every cached numba kernel of the sources in ``folder`` and its subfolders when any
+    ``*.py`` source there changed since the caches were stamped, so that all kernels recompile
+    together. Does nothing where numba caches nothing (or the cache cannot be written)."""
+    sources = sorted(folder.rglob("*.py"))
+    digest = hashlib.sha256()
+    for source in sources:
+        digest.update(source.relative_to(folder).as_posix().encode() + b"\0" + source.read_bytes())
+    for place in sorted({source.parent for source in sources}):
+        _restamp(place, digest.hexdigest())
+
+
+def _restamp(folder: Path, digest: str) -> None:
+    """Delete the cached kernels of ``folder``'s own sources unless their cache bears ``digest``;
+    then stamp it with ``digest``."""
     cache = numba_cache_folder(folder)
     if cache is None:
         return
-    digest = hashlib.sha256()
-    for source in sorted(folder.glob("*.py")):
-        digest.update(source.name.encode() + b"\0" + source.read_bytes())
     stamp = cache / STAMP
     try:
-        if stamp.is_file() and stamp.read_text() == digest.hexdigest():
+        if stamp.is_file() and stamp.read_text() == digest:
             return
         for kernel in (*cache.glob("*.nbi"), *cache.glob("*.nbc")):
             kernel.unlink(missing_ok=True)
         cache.mkdir(parents=True, exist_ok=True)
-        stamp.write_text(digest.hexdigest())
+        stamp.write_text(digest)
     except OSError:
         return

@@ -16,7 +16,7 @@ from enum import StrEnum
 import numpy as np
 
 from netgym.errors import InvalidArgumentError
-from netgym.physics.opening import Opening
+from netgym.physics.model.opening import Opening
 
 class Reason(StrEnum):
     """Why a throw's outcome was decided (equal to its string value). Each labels one outcome:

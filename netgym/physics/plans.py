@@ -7,7 +7,7 @@ could decide), :class:`Relax` (relax for at most this many steps, until a rest t
 or :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
 requests of a simulator's plan, one integration call per :class:`Integrate` (one per piece
-between frame instants when it films, with a :class:`~netgym.physics.frames.Film`), and throws
+between frame instants when it films, with a :class:`~netgym.physics.film.Film`), and throws
 a divergence back into the plan.
 """
 
@@ -17,11 +17,11 @@ from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any, Protocol, Union
 
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 
 from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, integrate_watched, relax
-from netgym.physics.model import KernelModel, Settings
-from netgym.physics.watch import Watch
+from netgym.physics.model.model import KernelModel, Settings
+from netgym.physics.kernels.watch import Watch
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
 
@@ -38,7 +38,7 @@ class Integrate:
 @dataclass(frozen=True)
 class Watched:
     """Request: integrate chunk after chunk of ``watch.chunk`` steps of ``dt`` with
-    ``integrator`` until the :class:`~netgym.physics.watch.Watch` sees something that could be
+    ``integrator`` until the :class:`~netgym.physics.kernels.watch.Watch` sees something that could be
     decided (not for a filmed plan: a film needs every chunk)."""
 
     integrator: int
@@ -78,16 +78,17 @@ class Drivable(Integrand, Protocol):
         """Kernel settings for this integrator and dt."""
 
 
-def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[Any], None] | None = None) -> Any:
+def drive(sim: Drivable, plan: Plan, workspace: Workspace, film: Film | None = None,
+          observer: Callable[[Any], None] | None = None) -> Any:
     """Carry out ``plan`` on ``sim`` until it returns; returns its result.
 
     Each :class:`Integrate` request is one :func:`~netgym.physics.integration.integrate` call
-    (one per piece between the frame instants when ``observer`` is a
-    :class:`~netgym.physics.frames.Film`: :func:`_integrate_filmed`), each :class:`Watched`
-    one :func:`~netgym.physics.integration.integrate_watched` call, each :class:`Relax`
-    one :func:`~netgym.physics.integration.relax` call; the plan is then resumed, with the
-    divergence error of that integration thrown into it if there was one. ``observer(sim)`` is
-    called after every call carried out without error, for example to record frames.
+    (with a ``film``, one per piece between its instants, each filmed: :func:`_integrate_filmed`),
+    each :class:`Watched` one :func:`~netgym.physics.integration.integrate_watched` call (never
+    filmed: a film needs every chunk), each :class:`Relax` one
+    :func:`~netgym.physics.integration.relax` call; the plan is then resumed, with the
+    divergence error of that integration thrown into it if there was one. After every request
+    carried out without error the ``film`` films and ``observer(sim)`` is called.
     """
     error: Exception | None = None
     while True:
@@ -96,23 +97,25 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, observer: Callable[[A
         except StopIteration as stop:
             return stop.value
         error = None
-        if isinstance(request, Integrate) and isinstance(observer, Film):
-            error = _integrate_filmed(sim, request, workspace, observer)
+        if isinstance(request, Integrate) and film is not None:
+            error = _integrate_filmed(sim, request, workspace, film)
             continue  # filmed piece by piece
         if isinstance(request, Integrate):
             error = integrate(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                               workspace)
         elif isinstance(request, Watched):
-            if isinstance(observer, Film):
+            if film is not None:
                 raise TypeError("a filmed plan integrates chunk by chunk (Integrate requests), not Watched ones")
             error = integrate_watched(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), workspace,
                                       request.watch)
         elif isinstance(request, Relax):
             error = relax(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                           workspace, request.rest)
-        if error is None and isinstance(observer, Film):
-            observer(sim, request.dt if isinstance(request, Relax) else None)
-        elif error is None and observer is not None:
+        if error is not None:
+            continue
+        if film is not None:
+            film(sim, request.dt if isinstance(request, Relax) else None)
+        if observer is not None:
             observer(sim)
 
 

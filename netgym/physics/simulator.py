@@ -1,14 +1,15 @@
-"""The public simulator: a scene's net and balls, stepping, relaxation and plans.
+"""The public simulator: a scene's net and balls, their state, stepping, relaxation, sleeping
+and waking, and the running of plans.
 
-Whole throws (the fast path and its decisions) are :class:`~netgym.physics.throws.Throw` plans,
-which use only this class's public API; :func:`~netgym.physics.plans.drive` carries out plans.
+It knows no throw: throws (:mod:`netgym.physics.throw`) and the pause between them
+(:mod:`netgym.physics.pause`) are plans over its public API, which
+:func:`~netgym.physics.plans.drive` carries out.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,18 +20,18 @@ import numpy as np
 from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import AirConfig, SceneConfig, load_scene
 from netgym.errors import InvalidArgumentError, NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
-from netgym.physics.forces import energies
+from netgym.physics.kernels.forces import energies
 from netgym.physics.integration import RestTest, Workspace
-from netgym.physics.kinds import Integrator
-from netgym.physics.model import KernelModel, Model, Settings, State
-from netgym.physics.opening import Opening
+from netgym.kinds import Integrator
+from netgym.physics.model.model import KernelModel, Model, Settings, State
+from netgym.physics.model.opening import Opening
 from netgym.physics.outcomes import CaptureRule, capture_rule
-from netgym.physics.frames import Film
+from netgym.physics.film import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
-from netgym.physics.stability import NetModes, net_modes, stable_dt
-from netgym.physics.stepping import new_counters
-from netgym.physics.throws import Throw, ThrowResult
+from netgym.physics.recent import Recent
+from netgym.physics.model.stability import NetModes, net_modes, stable_dt
+from netgym.physics.kernels.stepping import new_counters
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
 SETTLE_STABILITY_SHARE = 0.9  # the pause steps at most this share of its integrator's linear stability limit
@@ -62,7 +63,7 @@ class Energy:
 class PreparedNet:
     """What a simulator would otherwise work out for its net: its settled ``positions`` and the
     ``modes`` of the net at its own inertia and ``settle_modes`` at the pause's (for nets drawn
-    per episode, see :mod:`~netgym.physics.net_family`)."""
+    per episode, see :mod:`~netgym.physics.model.net_family`)."""
 
     positions: np.ndarray
     modes: NetModes
@@ -78,28 +79,9 @@ class Checkpoint:
     counters: np.ndarray
 
 
-class _Recent(OrderedDict):
-    """A dict that keeps only its ``size`` most recently stored or read entries (scenes drawn
-    per episode would otherwise grow the caches without end)."""
-
-    def __init__(self, size: int) -> None:
-        super().__init__()
-        self.size = size
-
-    def __getitem__(self, key: Any) -> Any:
-        self.move_to_end(key)
-        return super().__getitem__(key)
-
-    def __setitem__(self, key: Any, value: Any) -> None:
-        super().__setitem__(key, value)
-        self.move_to_end(key)
-        while len(self) > self.size:
-            self.popitem(last=False)
-
-
 CACHED_NETS = 64              # settled nets and net modes kept per process
-_SETTLED: _Recent = _Recent(CACHED_NETS)
-_MODES: _Recent = _Recent(CACHED_NETS)
+_SETTLED: Recent = Recent(CACHED_NETS)
+_MODES: Recent = Recent(CACHED_NETS)
 
 
 class Simulator:
@@ -116,9 +98,8 @@ class Simulator:
         :class:`PreparedNet`); else the net is settled and analysed here (both cached per scene).
 
     ``awake`` is False while the net and the balls in it are at rest (a throw then need not
-    integrate them while its ball flies far from them); any integration wakes the scene.
-    ``capture_rule`` is the scene's (:mod:`~netgym.physics.outcomes`); ``film`` the
-    :class:`~netgym.physics.frames.Film` of the plan being run, if it is filmed.
+    integrate them while its ball flies far from them): :meth:`wake` and :meth:`sleep` are the
+    only writers. ``capture_rule`` is the scene's (:mod:`~netgym.physics.outcomes`).
     """
 
     def __init__(self, scene: SceneConfig | str | Path = "basket",
@@ -136,7 +117,6 @@ class Simulator:
         self.workspace = Workspace()
         self.awake = False
         self.capture_rule: CaptureRule = capture_rule(config.capture_rule)
-        self.film: Film | None = None
         self.modes = self._net_modes() if prepared is None else prepared.modes
         self.stable_dt = stable_dt(self.integrator, self.modes)
         if check_stability and self.dt > self.stable_dt:
@@ -189,11 +169,6 @@ class Simulator:
         return self.state.x[self.model.n_net:].copy()
 
     @property
-    def ball_velocities(self) -> np.ndarray:
-        """(n_balls, 3) ball velocities (a copy)."""
-        return self.state.v[self.model.n_net:].copy()
-
-    @property
     def substeps(self) -> int:
         """Integration substeps taken since construction."""
         return int(self.counters[0]["substeps"])
@@ -235,13 +210,19 @@ class Simulator:
         s.entered = np.append(s.entered, np.int8(self.opening.contains(p)))
         return self.n_balls - 1
 
-    def remove_ball(self, index: int) -> None:
-        """Take ball ``index`` out of the scene."""
+    def remove_ball(self, index: int, wake: bool = True) -> None:
+        """Take ball ``index`` out of the scene; the scene wakes (the net may move once the
+        ball's weight is gone) unless ``wake`` is False (a ball that never touched it)."""
         if not 0 <= index < self.n_balls:
             raise IndexError(f"ball index {index} out of range; the scene has {self.n_balls} balls")
         s, row = self.state, self.model.n_net + index
         s.x, s.v = np.delete(s.x, row, axis=0), np.delete(s.v, row, axis=0)
         s.inv_mass, s.entered = np.delete(s.inv_mass, row), np.delete(s.entered, index)
+        if wake:
+            self.wake()
+
+    def wake(self) -> None:
+        """Mark the scene as moving: it is integrated until it is put to sleep again."""
         self.awake = True
 
     def sleep(self, keep: int | None = None) -> None:
@@ -273,7 +254,7 @@ class Simulator:
             raise InvalidArgumentError(f"dt = {dt!r}; allowed: a finite number of seconds > 0")
         code = self.integrator if integrator is None else Integrator.parse(integrator)
         self.run(_request(Integrate(n_steps, code, float(dt))))
-        self.awake = True
+        self.wake()
 
     def relax(self, max_time: float = 60.0) -> None:
         """Bring the net and the balls in it to their equilibrium: the pause between two throws.
@@ -289,9 +270,10 @@ class Simulator:
         self.run(self.relax_plan(max_time))
 
     def relax_plan(self, max_time: float = 60.0, integrator: int | None = None, dt: float | None = None,
-                   settle_speed: float | None = None, damped: bool = True, window: float = RELAX_WINDOW) -> Plan:
-        """:meth:`relax` as a plan (see :meth:`run`); run with a :class:`Film` that films the
-        settling, its requests end at the clock's instants too; ``integrator`` and ``dt`` replace
+                   settle_speed: float | None = None, damped: bool = True, window: float = RELAX_WINDOW,
+                   film: Film | None = None) -> Plan:
+        """:meth:`relax` as a plan (see :meth:`run`); with a ``film`` that films the settling
+        (run it with the same film), its requests end at the clock's instants too; ``integrator`` and ``dt`` replace
         the pause's own (then with no fallback; a ``dt`` given, with the net's true inertia),
         ``settle_speed`` the scene's ``simulation.settle_speed``; ``damped=False`` leaves out the
         kinetic damping (the net's own dynamics come to rest, or not), ``window`` is the time over
@@ -299,20 +281,20 @@ class Simulator:
         if integrator is not None or dt is not None:
             integrator = self.settle_integrator if integrator is None else integrator
             yield from self._relaxation(max_time, integrator, self.settle_dt if dt is None else dt,
-                                        settle_speed, damped, window, self.settle_inertia if dt is None else 1.0)
+                                        settle_speed, damped, window, film, self.settle_inertia if dt is None else 1.0)
             return
         try:
             yield from self._relaxation(max_time, self.settle_integrator, self.settle_dt, settle_speed,
-                                        damped, window, self.settle_inertia)
+                                        damped, window, film, self.settle_inertia)
         except SimulationDivergedError:
             if (self.settle_integrator, self.settle_dt, self.settle_inertia) == (self.integrator, self.dt, 1.0):
                 raise
-            yield from self._relaxation(max_time, self.integrator, self.dt, settle_speed, damped, window)
+            yield from self._relaxation(max_time, self.integrator, self.dt, settle_speed, damped, window, film)
 
     def _relaxation(self, max_time: float, integrator: int, dt: float, settle_speed: float | None, damped: bool,
-                    window: float, inertia: float = 1.0) -> Plan:
+                    window: float, film: Film | None, inertia: float = 1.0) -> Plan:
         """Dynamic relaxation with one integrator, dt and inertia of the net (see :meth:`relax_plan`)."""
-        frames = self.film.clock if self.film is not None and self.film.settling else None
+        frames = film.clock if film is not None and film.settling else None
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
         rest = RestTest(self.state.x.shape, round(window / dt), speed * window, damped, inertia)
         started, taken = self.state.time, 0
@@ -331,29 +313,7 @@ class Simulator:
                                 f"{speed:g} m/s over {window:g} s) within {max_time:g} s of relaxation; "
                                 f"the state is left where the relaxation ended")
 
-    def pause_plan(self) -> Plan:
-        """The pause between two throws, as a plan: :meth:`relax_plan` if the scene still moves,
-        else nothing; a net with no ball in it is put back at its equilibrium, the settled net
-        (filmed, it relaxes for the frames first, then is put back as unfilmed). Returns
-        ``{"settle_substeps": ..., "settle_time": ...}``, the substeps and simulated seconds it
-        took. Run with a :class:`Film` that films the settling, its requests end at the clock's
-        instants; with one that does not, the clock is paused over it (restart it at the launch)."""
-        substeps, time, film = self.substeps, self.state.time, self.film
-        if self.awake:
-            if film is not None and not film.settling:
-                film.clock.pause()
-            if self.n_balls > 0:
-                yield from self.relax_plan()
-            else:
-                if film is not None and film.settling:
-                    kept = self.checkpoint()
-                    yield from self.relax_plan()
-                    self.restore(kept)
-                    film.clock.restart(time)
-                self._settle_empty_net()
-        return {"settle_substeps": self.substeps - substeps, "settle_time": self.state.time - time}
-
-    def _settle_empty_net(self) -> None:
+    def rest_empty_net(self) -> None:
         """Put the net, with no ball in it, at rest in the shape every episode starts from (its
         equilibrium; where the net lies on the ground, as the goal's bottom does, friction could
         have held a disturbed net a little elsewhere), keeping the time."""
@@ -362,31 +322,11 @@ class Simulator:
         self.state.time = time
         self.awake = False
 
-    def throw(self, position: Any, velocity: Any, fast: bool = True,
-              observer: Callable[["Simulator"], None] | None = None) -> ThrowResult:
-        """Launch a ball and simulate until its outcome is decided (see :class:`Throw`).
-
-        The net is first brought to rest if it still moves. A ball captured under the ``held``
-        rule stays in the scene; a missed one, or a goal under ``line``, is removed. With
-        ``fast=False`` everything is integrated from launch to the time limit (the reference the
-        fast path is tested against). ``observer(sim)`` is called after every request; a
-        :class:`Film` films the throw (see :class:`Throw`).
-        """
-        return self.run(self.throw_plan(position, velocity, fast), observer)
-
-    def throw_plan(self, position: Any, velocity: Any, fast: bool = True) -> Plan:
-        """:meth:`throw` as a plan (see :meth:`run`); it returns the :class:`ThrowResult`."""
-        return Throw(self, position, velocity, fast).plan()
-
-    def run(self, plan: Plan, observer: Callable[["Simulator"], None] | None = None) -> Any:
+    def run(self, plan: Plan, film: Film | None = None, observer: Callable[["Simulator"], None] | None = None) -> Any:
         """Carry out a plan on this simulator (with :func:`~netgym.physics.plans.drive`) and
-        return its result. ``observer(sim)`` is called after every request; a :class:`Film` is
-        the plan's :attr:`film` meanwhile, so that its requests stop at the film's instants."""
-        kept, self.film = self.film, observer if isinstance(observer, Film) else None
-        try:
-            return drive(self, plan, self.workspace, observer)
-        finally:
-            self.film = kept
+        return its result. A ``film`` (the one the plan was made with) films it: its integration
+        requests stop at the film's instants; ``observer(sim)`` is called after every request."""
+        return drive(self, plan, self.workspace, film, observer)
 
     def divergence_advice(self, integrator: int) -> str:
         """What to change after ``integrator`` diverged on this scene."""
@@ -414,10 +354,10 @@ class Simulator:
             progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
             speed = min(NEW_NET_SETTLE_SPEED, self.config.simulation.settle_speed)
             try:  # kinetically damped near the equilibrium, then on the scene's own dynamics until it stays
-                self.run(self.relax_plan(SETTLE_TIME, settle_speed=speed), progress)
+                self.run(self.relax_plan(SETTLE_TIME, settle_speed=speed), observer=progress)
                 try:
                     self.run(self.relax_plan(SETTLE_TIME, self.integrator, self.dt, settle_speed=NEW_NET_REST_SPEED,
-                                             damped=False, window=NEW_NET_WINDOW), progress)
+                                             damped=False, window=NEW_NET_WINDOW), observer=progress)
                 except NetNotAtRestError:
                     self.sleep()  # a heavily overdamped net creeps on for minutes: as settled as SETTLE_TIME gets it
             except SimulationDivergedError:
@@ -425,7 +365,7 @@ class Simulator:
                 # start it from the equilibrium found with implicit Euler instead
                 self.state = State.at_rest(self.model)
                 self.run(self.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT,
-                                         settle_speed=speed), progress)
+                                         settle_speed=speed), observer=progress)
             finally:
                 progress.close()
             _SETTLED[key] = self.state.x.copy()

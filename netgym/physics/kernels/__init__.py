@@ -1,0 +1,2 @@
+"""The numba kernels: forces, the spring law, integrators, contacts, stepping, the balls'
+flight through air, and the checks a throw runs between chunks."""

@@ -1,0 +1,186 @@
+"""Smooth forces: springs with dampers along them, and gravity. numba kernels over flat arrays.
+
+Each spring pushes its ends by :mod:`~netgym.physics.kernels.spring_law`; air drag ``-drag * m * v``
+acts on every free body.
+"""
+
+from __future__ import annotations
+
+import math
+
+from netgym.physics.kernels import spring_law
+from netgym.physics.kernels.jit import inline_kernel, kernel
+
+
+@inline_kernel
+def spring_axis(x, i, j):
+    """Length of the spring i-j and its unit direction from j to i (zero if degenerate)."""
+    dx = x[i, 0] - x[j, 0]
+    dy = x[i, 1] - x[j, 1]
+    dz = x[i, 2] - x[j, 2]
+    length = math.sqrt(dx * dx + dy * dy + dz * dz)
+    inv = 1.0 / length if length > 1e-12 else 0.0
+    return length, dx * inv, dy * inv, dz * inv
+
+
+@inline_kernel
+def _to_columns(rows, columns, n):
+    """Copy the first ``n`` rows of the C-contiguous ``rows`` (at least n, 3) into the first n
+    places of the three rows of ``columns``. Read as a flat array with a constant stride, the
+    copy is vectorised (the compiler interleaves the loads); indexed by row and column it is not."""
+    flat = rows.reshape(-1)
+    for k in range(n):
+        columns[0, k] = flat[3 * k]
+        columns[1, k] = flat[3 * k + 1]
+        columns[2, k] = flat[3 * k + 2]
+
+
+@inline_kernel
+def _from_columns(columns, rows, n):
+    """Copy the first ``n`` places of ``columns``' three rows back into the first n rows of the
+    C-contiguous ``rows``, vectorised likewise."""
+    flat = rows.reshape(-1)
+    for k in range(n):
+        flat[3 * k] = columns[0, k]
+        flat[3 * k + 1] = columns[1, k]
+        flat[3 * k + 2] = columns[2, k]
+
+
+@inline_kernel
+def _dense_group_forces(positions, velocities, params, out, offset, first, length, start, ks, kd):
+    """Forces of the dense group (offset, first, length, start), of stiffness ``ks`` and damping
+    ``kd``, of a :class:`~netgym.physics.model.springs.Springs` into ``out`` (its ``dense_forces``): on
+    the first particles in rows 0-2, on the second in rows 3-5, -0.0 (which adds nothing,
+    bitwise) where a spring is missing or degenerate. Contiguous columns and unsigned indices:
+    the compiler vectorises this loop."""
+    for t in range(length):
+        i = first + t
+        j = i + offset
+        s = start + t
+        dx = positions[0, i] - positions[0, j]
+        dy = positions[1, i] - positions[1, j]
+        dz = positions[2, i] - positions[2, j]
+        length_ij = math.sqrt(dx * dx + dy * dy + dz * dz)
+        inv = 1.0 / length_ij
+        ux = dx * inv
+        uy = dy * inv
+        uz = dz * inv
+        closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
+                   + (velocities[2, i] - velocities[2, j]) * uz)
+        mag = spring_law.tension(length_ij, params[0, s], ks, kd, closing)
+        exists = (params[1, s] != 0.0) & (length_ij > 1e-12)
+        fx = mag * ux
+        fy = mag * uy
+        fz = mag * uz
+        out[0, s] = fx if exists else -0.0
+        out[1, s] = fy if exists else -0.0
+        out[2, s] = fz if exists else -0.0
+        out[3, s] = -fx if exists else -0.0
+        out[4, s] = -fy if exists else -0.0
+        out[5, s] = -fz if exists else -0.0
+
+
+@inline_kernel
+def _add_dense_group(totals, forces, row, first, length, start):
+    """Add rows ``row .. row + 2`` of a dense group's forces to the force columns ``totals`` of
+    the particles ``first .. first + length - 1``."""
+    for c in range(3):
+        for t in range(length):
+            totals[c, first + t] += forces[row + c, start + t]
+
+
+@kernel
+def spring_forces(x, v, springs, f):
+    """Add every spring's force to ``f`` (n, 3); ``springs``: a
+    :class:`~netgym.physics.model.springs.Springs`. Bitwise the sum of a loop over the springs sorted
+    by particle pair: on the second particles group by group in decreasing offset, then on the
+    first particles in increasing offset (the :mod:`~netgym.physics.model.springs` module says why).
+    The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
+    groups, pairs, params, sparse = springs.groups, springs.sparse_pairs, springs.sparse_params, springs.sparse_forces
+    positions, velocities, totals = springs.columns[0:3], springs.columns[3:6], springs.columns[6:9]
+    n = springs.n_particles
+    _to_columns(x, positions, n)
+    _to_columns(v, velocities, n)
+    _to_columns(f, totals, n)
+    n_groups = groups.shape[0]
+    for h in range(n_groups):
+        g = n_groups - 1 - h
+        offset, first, length, start = groups[g, 0], groups[g, 1], groups[g, 2], groups[g, 3]
+        if groups[g, 4]:
+            _dense_group_forces(positions, velocities, springs.dense_params, springs.dense_forces, offset, first,
+                                length, start, springs.group_params[g, 0], springs.group_params[g, 1])
+            _add_dense_group(totals, springs.dense_forces, 3, first + offset, length, start)
+            continue
+        for s in range(start, start + length):
+            i = pairs[s, 0]
+            j = pairs[s, 1]
+            length_ij, ux, uy, uz = spring_axis(positions.T, i, j)
+            sparse[3, s] = 0.0
+            if length_ij <= 1e-12:
+                continue
+            closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
+                       + (velocities[2, i] - velocities[2, j]) * uz)
+            mag = spring_law.tension(length_ij, params[s, 0], params[s, 1], params[s, 2], closing)
+            sparse[0, s], sparse[1, s], sparse[2, s], sparse[3, s] = mag * ux, mag * uy, mag * uz, 1.0
+            totals[0, j] -= sparse[0, s]
+            totals[1, j] -= sparse[1, s]
+            totals[2, j] -= sparse[2, s]
+    for g in range(n_groups):
+        first, length, start = groups[g, 1], groups[g, 2], groups[g, 3]
+        if groups[g, 4]:
+            _add_dense_group(totals, springs.dense_forces, 0, first, length, start)
+            continue
+        for s in range(start, start + length):
+            if sparse[3, s] != 0.0:
+                i = pairs[s, 0]
+                totals[0, i] += sparse[0, s]
+                totals[1, i] += sparse[1, s]
+                totals[2, i] += sparse[2, s]
+    _from_columns(totals, f, n)
+
+
+@kernel
+def accelerations(x, v, inv_mass, gravity, drag, springs, a):
+    """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs (a
+    :class:`~netgym.physics.model.springs.Springs`), gravity and linear air drag ``-drag * v``."""
+    a[:] = 0.0
+    spring_forces(x, v, springs, a)
+    for k in range(x.shape[0]):
+        w = inv_mass[k]
+        if w > 0.0:
+            a[k, 0] = a[k, 0] * w - drag * v[k, 0]
+            a[k, 1] = a[k, 1] * w - drag * v[k, 1]
+            a[k, 2] = a[k, 2] * w - drag * v[k, 2] + gravity
+        else:
+            a[k, 0] = 0.0
+            a[k, 1] = 0.0
+            a[k, 2] = 0.0
+
+
+@kernel
+def kinetic_energy(v, inv_mass):
+    """Kinetic energy of the free bodies (rows of ``v`` with ``inv_mass`` > 0), in joules."""
+    kinetic = 0.0
+    for k in range(v.shape[0]):
+        w = inv_mass[k]
+        if w > 0.0:
+            kinetic += 0.5 * (1.0 / w) * (v[k, 0] ** 2 + v[k, 1] ** 2 + v[k, 2] ** 2)
+    return kinetic
+
+
+@kernel
+def energies(x, v, inv_mass, gravity, springs, params):
+    """(kinetic, spring potential, gravitational potential) of all free bodies, in joules."""
+    kinetic = kinetic_energy(v, inv_mass)
+    potential_g = 0.0
+    for k in range(x.shape[0]):
+        w = inv_mass[k]
+        if w > 0.0:
+            potential_g -= (1.0 / w) * gravity * x[k, 2]
+    potential_s = 0.0
+    for s in range(springs.shape[0]):
+        i = springs[s, 0]
+        j = springs[s, 1]
+        length = math.sqrt((x[i, 0] - x[j, 0]) ** 2 + (x[i, 1] - x[j, 1]) ** 2 + (x[i, 2] - x[j, 2]) ** 2)
+        potential_s += spring_law.energy(length, params[s, 0], params[s, 1])
+    return kinetic, potential_s, potential_g

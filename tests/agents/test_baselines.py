@@ -1,0 +1,258 @@
+"""The baselines' runner (agents/baselines, scripts/baselines.py): statistics against known
+answers and scipy, the grid and its hyperparameter files, and a runner killed and started again."""
+
+from __future__ import annotations
+
+import inspect
+import importlib
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from agents.baselines import grid as grid_module
+from agents.baselines import report
+from agents.baselines.grid import ALGORITHMS, BUDGETS, REFERENCES, grid
+from agents.baselines.runner import done, missing
+from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
+from agents.hyperparams import action_noise, algorithm_kwargs, env_ids, load, yml
+from agents.policies import policy_in_env, saved_algorithm
+from netgym.bench.results import read_results, write_results
+from netgym.errors import InvalidArgumentError
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_iqm_is_the_mean_of_the_middle_half() -> None:
+    """Of 1..8 the middle half is 3..6, whose mean is 4.5, whatever the array's shape or order."""
+    scores = np.arange(1.0, 9.0)
+    middle = scores[2:6].mean()
+    assert iqm(scores) == pytest.approx(middle)
+    assert iqm(np.random.default_rng(0).permutation(scores).reshape(4, 2)) == pytest.approx(middle)
+    assert iqm(np.stack([scores, 10 * scores]), axis=1) == pytest.approx([middle, 10 * middle])
+
+
+def test_bootstrap_interval_of_a_constant_is_that_constant() -> None:
+    assert bootstrap_ci(np.full(5, 0.7)) == pytest.approx((0.7, 0.7))
+
+
+def test_stratified_bootstrap_resamples_within_each_task() -> None:
+    """Two tasks whose runs all score 0 and all score 1: every stratified resample keeps as many
+    zeros as ones, so the IQM of every resample is the IQM of the scores and the interval is
+    that one point; resampling the pooled runs instead would spread it."""
+    scores = np.stack([np.zeros(4), np.ones(4)], axis=1)
+    assert bootstrap_ci(scores) == pytest.approx((iqm(scores), iqm(scores)))
+    low, high = bootstrap_ci(np.ravel(scores))
+    assert low < iqm(scores) < high
+
+
+def test_bootstrap_interval_agrees_with_scipy() -> None:
+    """One task: the percentile interval of the IQM agrees with scipy.stats.bootstrap's to within
+    a tenth of its width (both estimate the same interval from random resamples)."""
+    sample = np.random.default_rng(1).normal(size=20)
+    ours = np.array(bootstrap_ci(sample, reps=20_000))
+    theirs = stats.bootstrap((sample,), iqm, n_resamples=20_000, method="percentile", random_state=2)
+    reference = np.array([theirs.confidence_interval.low, theirs.confidence_interval.high])
+    assert np.abs(ours - reference).max() < 0.1 * (reference[1] - reference[0])
+
+
+def test_bootstrap_interval_covers_the_true_iqm_about_as_often_as_it_claims() -> None:
+    """Over 200 seeded samples of 20 normal scores the 95% interval holds the distribution's
+    IQM (its mean: it is symmetric) in 85-99% of them (percentile intervals of small samples
+    cover a little less than they claim)."""
+    rng = np.random.default_rng(3)
+    covered = [low <= 0.0 <= high for low, high in
+               (bootstrap_ci(rng.normal(size=20), reps=1000, seed=k) for k in range(200))]
+    assert 0.85 <= np.mean(covered) <= 0.99
+
+
+def test_normalise_puts_random_at_zero_and_the_ceiling_at_one() -> None:
+    assert normalise([0.04, 0.52, 1.0], 0.04, 1.0) == pytest.approx([0.0, 0.5, 1.0])
+
+
+def test_performance_profile_counts_runs_strictly_above_each_threshold() -> None:
+    scores = np.array([[0.1, 0.5], [0.9, 0.5]])
+    assert performance_profile(scores, np.array([0.0, 0.5, 0.9])) == pytest.approx([1.0, 0.25, 0.0])
+
+
+@pytest.mark.parametrize("algorithm", sorted(ALGORITHMS))
+def test_every_algorithms_settings_are_arguments_of_its_class(algorithm: str) -> None:
+    """Each yml has settings for ids of the grid only, each setting is rl_zoo3's or an argument
+    of the algorithm's class, and its noise makes SB3 action noise."""
+    module, name = ALGORITHMS[algorithm]
+    parameters = inspect.signature(getattr(importlib.import_module(module), name)).parameters
+    assert env_ids(yml(algorithm)) and set(env_ids(yml(algorithm))) <= set(BUDGETS)
+    for env_id in env_ids(yml(algorithm)):
+        settings = load(yml(algorithm), env_id)
+        assert set(algorithm_kwargs(settings)) <= set(parameters)
+        noise = action_noise(settings, 3)
+        assert (noise is None) == ("noise_type" not in settings) and ("action_noise" in parameters or noise is None)
+
+
+def test_grid_gives_every_algorithm_its_ids_budget_and_each_id_its_references() -> None:
+    runs = grid()
+    learners = [run for run in runs if run.algorithm not in REFERENCES]
+    assert {run.algorithm for run in learners} == set(ALGORITHMS)
+    assert all(run.budget == BUDGETS[run.env_id] and run.env_id in env_ids(yml(run.algorithm)) for run in learners)
+    ids = {run.env_id for run in runs}
+    assert {(run.algorithm, run.env_id) for run in runs if run.algorithm in REFERENCES} == \
+        {(reference, env_id) for reference in REFERENCES for env_id in ids}
+    assert len({run.path(Path("out")) for run in runs}) == len(runs)
+    for run in learners:  # PPO's rollouts end on the budget
+        settings = load(yml(run.algorithm), run.env_id)
+        assert run.budget % (settings.get("n_envs", 1) * settings.get("n_steps", 1)) == 0
+
+
+def test_grid_refuses_unknown_names() -> None:
+    with pytest.raises(InvalidArgumentError, match="algorithm"):
+        grid(["dqn"])
+    with pytest.raises(InvalidArgumentError, match="env id"):
+        grid(ids=["CartPole-v1"])
+
+
+def test_a_run_is_done_only_with_a_complete_result_file(tmp_path: Path) -> None:
+    run = grid(quick=True)[0]
+    assert missing([run], tmp_path) == [run]
+    run.path(tmp_path).parent.mkdir(parents=True)
+    run.path(tmp_path).write_text('{"figures": {"fin')  # cut short: never what write_results leaves
+    assert not done(run, tmp_path)
+    write_results(run.path(tmp_path), {"final": {"rate": 1.0}})
+    assert done(run, tmp_path) and missing([run], tmp_path) == []
+
+
+def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, monkeypatch) -> None:
+    from agents.baselines import runner
+
+    failing, passing = grid(quick=True)[:2]
+    outcomes = [(failing, ValueError("boom")), (passing, {"final": {"rate": 1.0}, "wall_s": 1.0})]
+    monkeypatch.setattr(runner, "_local", lambda runs, workers, models: iter(outcomes))
+    lines: list[str] = []
+    with pytest.raises(RuntimeError, match=failing.name):
+        runner.run_missing([failing, passing], tmp_path, report=lines.append)
+    assert done(passing, tmp_path) and not done(failing, tmp_path)
+    assert any("FAILED" in line and "boom" in line for line in lines)
+
+
+def _children(pid: int) -> list[int]:
+    """Process ids whose parent is ``pid``."""
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid:
+            found.append(int(stat.parent.name))
+    return found
+
+
+def _results(out: Path) -> dict[Path, bytes]:
+    return {path: path.read_bytes() for path in sorted(out.rglob("*.json"))}
+
+
+@pytest.mark.slow
+def test_runner_killed_and_started_again_runs_only_the_missing_runs(tmp_path: Path) -> None:
+    """SIGKILL the runner once its first result lands: its workers end with it, every result
+    file left is complete, and the runner started again runs exactly the missing runs, leaving
+    those files as they were, and writes the report."""
+    out = tmp_path / "out"
+    command = [sys.executable, "scripts/baselines.py", "--quick", "--out", str(out), "--algos", "ppo", "sac",
+               "--ids", "NetCatch-v0", "--workers", "2"]
+    runs = grid(["ppo", "sac"], ["NetCatch-v0"], quick=True)
+    first = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    deadline = time.monotonic() + 300
+    while not list(out.rglob("*.json")) and time.monotonic() < deadline and first.poll() is None:
+        time.sleep(0.2)
+    workers = _children(first.pid)
+    first.send_signal(signal.SIGKILL)
+    first.wait()
+    before = _results(out)
+    assert 1 <= len(before) < len(runs), "the first runner ended before it was killed"
+    assert all("final" in json.loads(text)["figures"] for text in before.values())
+    deadline = time.monotonic() + 30
+    while any(Path(f"/proc/{pid}").exists() for pid in workers) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert not any(Path(f"/proc/{pid}").exists() for pid in workers), "a worker outlived the killed runner"
+    after = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert after.returncode == 0, after.stderr[-3000:]
+    assert f"{len(before)} of {len(runs)} runs done" in after.stdout
+    assert after.stdout.count("% captured") == len(runs) - len(before)
+    results = _results(out)
+    assert {path: results[path] for path in before} == before  # none rerun
+    assert set(results) == {run.path(out) for run in runs}  # none lost
+    for run in runs:
+        record = read_results(run.path(out))
+        figures = record["figures"]
+        assert record["command"].split()[1:] == run.command(out)
+        assert figures["seed"] == run.seed and figures["budget"] == run.budget and figures["versions"]["torch"]
+        assert figures["final"]["episodes"] == run.final_episodes and figures["final"]["deterministic"]
+        assert figures["env_steps"] >= run.budget and (len(figures["curve"]["points"]) >= 2) == (run.budget > 0)
+    assert "| ppo | NetCatch-v0 |" in (out / "report.md").read_text() and (out / "curves.png").stat().st_size > 0
+
+
+@pytest.mark.slow
+def test_quick_mode_runs_the_quick_grid_end_to_end(tmp_path: Path) -> None:
+    """``--quick``, as CI runs it: every run of the quick grid, the table and the figure."""
+    done_ = subprocess.run([sys.executable, "scripts/baselines.py", "--quick", "--out", str(tmp_path)], cwd=ROOT,
+                           capture_output=True, text=True, timeout=600)
+    assert done_.returncode == 0, done_.stderr[-3000:]
+    runs = grid(quick=True)
+    assert all(done(run, tmp_path) for run in runs)
+    report = (tmp_path / "report.md").read_text()
+    assert all(f"| {run.algorithm} | {run.env_id} |" in report for run in runs)
+    assert len(grid_module.QUICK_IDS) == len({run.env_id for run in runs})
+    for run in (run for run in runs if run.algorithm not in REFERENCES):  # each model loads with no other argument
+        model = tmp_path / "models" / f"{run.name}.zip"
+        assert saved_algorithm(model) == ALGORITHMS[run.algorithm][1]
+        env_id, policy = policy_in_env(model)
+        assert env_id == run.env_id and type(policy).__name__ == ALGORITHMS[run.algorithm][1]
+
+
+@pytest.mark.slow
+def test_runs_go_to_a_ray_cluster_as_tasks_with_address(tmp_path: Path) -> None:
+    """``--address``: the same runs as Ray tasks on a local two-node cluster (in a network
+    namespace of its own, as tests/agents/test_rllib_cluster.py starts it), their results written here."""
+    from test_rllib_cluster import _needs_cluster
+
+    _needs_cluster()
+    command = [sys.executable, "scripts/local_cluster.py", "--", sys.executable, "scripts/baselines.py", "--quick",
+               "--out", str(tmp_path), "--algos", "ppo", "--ids", "NetCatch-v0", "--address", "127.0.0.1:6380"]
+    finished = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert finished.returncode == 0, finished.stdout[-3000:] + finished.stderr[-3000:]
+    runs = grid(["ppo"], ["NetCatch-v0"], quick=True)
+    assert f"{len(runs)} to run on the Ray cluster" in finished.stdout
+    assert all(done(run, tmp_path) for run in runs)
+
+
+def _cell(algorithm: str, env_id: str, rates: list[float]) -> list[dict]:
+    """Result records of one cell with these final rates (seeds 0, 1, ...)."""
+    return [{"algorithm": algorithm, "env_id": env_id, "seed": seed, "budget": 512, "final": {"rate": rate}}
+            for seed, rate in enumerate(rates)]
+
+
+def test_the_best_learner_has_the_highest_iqm_and_ties_go_to_more_seeds_then_the_mean() -> None:
+    cells = {("ppo", "NetCatch-v0"): _cell("ppo", "NetCatch-v0", [0.1, 0.9, 0.9, 0.9, 0.9]),
+             ("sac", "NetCatch-v0"): _cell("sac", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95]),
+             ("td3", "NetCatch-v0"): _cell("td3", "NetCatch-v0", [0.9, 0.9, 0.9]),
+             ("ppo", "NetCatchGoal-v0"): _cell("ppo", "NetCatchGoal-v0", [0.5, 0.6, 0.7, 0.8]),
+             ("random", "NetCatch-v0"): _cell("random", "NetCatch-v0", [1.0])}
+    best = report.best_learners(cells)
+    assert best == {"NetCatch-v0": ["sac"], "NetCatchGoal-v0": ["ppo"]}  # the reference's 100% does not count
+    tied = {**cells, ("tqc", "NetCatch-v0"): _cell("tqc", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95])}
+    assert report.best_learners(tied)["NetCatch-v0"] == ["sac", "tqc"]
+    assert report.best_line(tied, "NetCatch-v0").startswith("sac, tqc (tied): 90.0% [")
+    matrix = report.matrix(cells).splitlines()
+    assert matrix[0] == "| algorithm | NetCatch-v0 | NetCatchGoal-v0 |"
+    sac_row = next(line for line in matrix if line.startswith("| sac |"))
+    assert sac_row.split(" | ")[1].startswith("**90.0%") and sac_row.endswith("| - |")
+    assert next(line for line in matrix if line.startswith("| *random* |")).startswith("| *random* | 100.0% | - |")
+    assert report.best_line(cells, "NetCatchGoal-v0").startswith("ppo: 65.0% [") and "over 4 seeds at 512" in \
+        report.best_line(cells, "NetCatchGoal-v0")
+    assert report.best_line(cells, "NetCatchPixels-v0") == "none trained yet"
