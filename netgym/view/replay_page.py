@@ -5,7 +5,7 @@ orbit and zoom (plotly's 3D scene), play/pause buttons, a time slider and each f
 (which throw, and its outcome once decided) as the title. To keep the file small, frames are
 thinned to at most ``MAX_FPS`` a simulated second (every caption change kept) and coordinates
 rounded to the centimetre; the net's springs are drawn as a few long polylines, not segment by
-segment. A 3-throw basket episode is about 7 MB, 4.7 MB of which is plotly.js.
+segment. The embedded plotly.js is most of a short episode's file.
 """
 
 from __future__ import annotations
