@@ -6,7 +6,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from agents.bench.first_step import latest_runs
-from netgym.bench.results import read_results
+from netgym.bench.results import RESULTS, read_results
+
+TEMPLATE = RESULTS.parent / "_templates" / "first_step.md"
+"""The paragraph's prose, its figures named placeholders."""
 
 
 def _span(values: list[float]) -> str:
@@ -25,10 +28,8 @@ def block(path: Path) -> str:
     def span(cache: str, key: str) -> str:
         return _span([run[cache][key] for run in runs])
 
-    return (f"The first run compiles the simulator's numba kernels as it needs them and says so on stderr, with a "
-            f"count of the kernels compiled: from an empty cache, the first step of {figures['env']} (imports, "
-            f"`gym.make`, `reset`, one `step`) took {span('cold', 'seconds')} s, and the first throw to reach the "
-            f"net {span('cold', 'aimed_seconds')} s more (it compiles the balls' contacts); later runs load the "
-            f"kernels from numba's cache: {span('warm', 'seconds')} s to the first step (`docs/results/{path.name}`: "
-            f"{len(runs)} runs at load {_span([run['load_1min'] for run in runs])} on {figures['cpus']} cores, "
-            f"{record['machine']}; `{record['command']}`).")
+    return TEMPLATE.read_text().strip().format(
+        env=figures["env"], cold_seconds=span("cold", "seconds"), cold_aimed_seconds=span("cold", "aimed_seconds"),
+        warm_seconds=span("warm", "seconds"), file=path.name, runs=len(runs),
+        load=_span([run["load_1min"] for run in runs]), cpus=figures["cpus"], machine=record["machine"],
+        command=record["command"])
