@@ -67,10 +67,10 @@ def _result_record(result: ThrowResult) -> dict:
             "final_position": _hex(result.final_position)}
 
 
-def _full(throw: dict) -> dict:
+def _full(launch: dict) -> dict:
     """The throw simulated fully on a net settled from scratch."""
-    sim = Simulator(throw["scene"])
-    return _result_record(throw(sim, throw["position"], throw["velocity"], fast=False))
+    sim = Simulator(launch["scene"])
+    return _result_record(throw(sim, launch["position"], launch["velocity"], fast=False))
 
 
 def _full_each(throws: list[dict], workers: int) -> list[dict]:
