@@ -2,7 +2,8 @@
 numba kernels.
 
 Copies go component by component: numba's array assignment (``a[k] = b[j]``, ``a[:] = b``)
-brings in its broadcasting machinery, whose first use costs a process 6 to 9 s of compilation.
+brings in its broadcasting machinery, whose first use adds seconds of compilation to a process
+(``docs/BENCHMARKS.md``).
 """
 
 from __future__ import annotations

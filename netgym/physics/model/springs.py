@@ -58,8 +58,7 @@ def wavefront_order(springs: np.ndarray, n_particles: int) -> np.ndarray:
     two springs of a wavefront share a particle, and the springs sharing a particle keep their
     order, so every particle sees the same updates in the same order. The processor no longer
     waits at every spring for the store of the spring before it (in memory order the springs
-    of one particle come one after the other); what that saves is measured in the benchmark
-    report (``docs/BENCHMARKS.md``, what the optimisations bought).
+    of one particle come one after the other); ``docs/BENCHMARKS.md`` says what that saves.
     """
     latest = [0] * n_particles
     wavefront = np.empty(len(springs), dtype=np.int64)
