@@ -47,12 +47,12 @@ def _from_columns(columns, rows, n):
 
 
 @inline_kernel
-def _dense_group_forces(positions, velocities, params, out, offset, first, length, start, ks, kd):
+def _dense_group_forces(positions, velocities, dense, offset, first, length, start, ks, kd):
     """Forces of the dense group (offset, first, length, start), of stiffness ``ks`` and damping
-    ``kd``, of a :class:`~netgym.physics.model.springs.Springs` into ``out`` (its ``dense_forces``): on
-    the first particles in rows 0-2, on the second in rows 3-5, -0.0 (which adds nothing,
-    bitwise) where a spring is missing or degenerate. Contiguous columns and unsigned indices:
-    the compiler vectorises this loop."""
+    ``kd``, into the :class:`~netgym.physics.model.springs.DenseSprings` ``dense``'s ``on_first``
+    and ``on_second``, -0.0 (which adds nothing, bitwise) where a spring is missing or
+    degenerate. Contiguous columns and unsigned indices: the compiler vectorises this loop."""
+    rest, present, on_first, on_second = dense.rest, dense.exists, dense.on_first, dense.on_second
     for t in range(length):
         i = first + t
         j = i + offset
@@ -67,26 +67,26 @@ def _dense_group_forces(positions, velocities, params, out, offset, first, lengt
         uz = dz * inv
         closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
                    + (velocities[2, i] - velocities[2, j]) * uz)
-        mag = spring_law.tension(length_ij, params[0, s], ks, kd, closing)
-        exists = (params[1, s] != 0.0) & (length_ij > 1e-12)
+        mag = spring_law.tension(length_ij, rest[s], ks, kd, closing)
+        exists = (present[s] != 0.0) & (length_ij > 1e-12)
         fx = mag * ux
         fy = mag * uy
         fz = mag * uz
-        out[0, s] = fx if exists else -0.0
-        out[1, s] = fy if exists else -0.0
-        out[2, s] = fz if exists else -0.0
-        out[3, s] = -fx if exists else -0.0
-        out[4, s] = -fy if exists else -0.0
-        out[5, s] = -fz if exists else -0.0
+        on_first[0, s] = fx if exists else -0.0
+        on_first[1, s] = fy if exists else -0.0
+        on_first[2, s] = fz if exists else -0.0
+        on_second[0, s] = -fx if exists else -0.0
+        on_second[1, s] = -fy if exists else -0.0
+        on_second[2, s] = -fz if exists else -0.0
 
 
 @inline_kernel
-def _add_dense_group(totals, forces, row, first, length, start):
-    """Add rows ``row .. row + 2`` of a dense group's forces to the force columns ``totals`` of
-    the particles ``first .. first + length - 1``."""
+def _add_dense_group(totals, forces, first, length, start):
+    """Add a dense group's ``forces`` (its block's ``on_first`` or ``on_second``) to the force
+    columns ``totals`` of the particles ``first .. first + length - 1``."""
     for c in range(3):
         for t in range(length):
-            totals[c, first + t] += forces[row + c, start + t]
+            totals[c, first + t] += forces[c, start + t]
 
 
 @kernel
@@ -96,46 +96,46 @@ def spring_forces(x, v, springs, f):
     by particle pair: on the second particles group by group in decreasing offset, then on the
     first particles in increasing offset (the :mod:`~netgym.physics.model.springs` module says why).
     The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
-    groups, pairs, params, sparse = springs.groups, springs.sparse_pairs, springs.sparse_params, springs.sparse_forces
-    positions, velocities, totals = springs.columns[0:3], springs.columns[3:6], springs.columns[6:9]
+    groups, dense, sparse = springs.groups, springs.dense, springs.sparse
+    positions, velocities, totals = springs.columns.positions, springs.columns.velocities, springs.columns.totals
+    pairs, on_first, computed = sparse.pairs, sparse.on_first, sparse.exists
     n = springs.n_particles
     _to_columns(x, positions, n)
     _to_columns(v, velocities, n)
     _to_columns(f, totals, n)
-    n_groups = groups.shape[0]
+    n_groups = groups.offset.shape[0]
     for h in range(n_groups):
         g = n_groups - 1 - h
-        offset, first, length, start = groups[g, 0], groups[g, 1], groups[g, 2], groups[g, 3]
-        if groups[g, 4]:
-            _dense_group_forces(positions, velocities, springs.dense_params, springs.dense_forces, offset, first,
-                                length, start, springs.group_params[g, 0], springs.group_params[g, 1])
-            _add_dense_group(totals, springs.dense_forces, 3, first + offset, length, start)
+        offset, first, length, start = groups.offset[g], groups.first[g], groups.length[g], groups.start[g]
+        if groups.dense[g]:
+            _dense_group_forces(positions, velocities, dense, offset, first, length, start, groups.ks[g], groups.kd[g])
+            _add_dense_group(totals, dense.on_second, first + offset, length, start)
             continue
         for s in range(start, start + length):
             i = pairs[s, 0]
             j = pairs[s, 1]
             length_ij, ux, uy, uz = spring_axis(positions.T, i, j)
-            sparse[3, s] = 0.0
+            computed[s] = 0.0
             if length_ij <= 1e-12:
                 continue
             closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
                        + (velocities[2, i] - velocities[2, j]) * uz)
-            mag = spring_law.tension(length_ij, params[s, 0], params[s, 1], params[s, 2], closing)
-            sparse[0, s], sparse[1, s], sparse[2, s], sparse[3, s] = mag * ux, mag * uy, mag * uz, 1.0
-            totals[0, j] -= sparse[0, s]
-            totals[1, j] -= sparse[1, s]
-            totals[2, j] -= sparse[2, s]
+            mag = spring_law.tension(length_ij, sparse.rest[s], sparse.ks[s], sparse.kd[s], closing)
+            on_first[0, s], on_first[1, s], on_first[2, s], computed[s] = mag * ux, mag * uy, mag * uz, 1.0
+            totals[0, j] -= on_first[0, s]
+            totals[1, j] -= on_first[1, s]
+            totals[2, j] -= on_first[2, s]
     for g in range(n_groups):
-        first, length, start = groups[g, 1], groups[g, 2], groups[g, 3]
-        if groups[g, 4]:
-            _add_dense_group(totals, springs.dense_forces, 0, first, length, start)
+        first, length, start = groups.first[g], groups.length[g], groups.start[g]
+        if groups.dense[g]:
+            _add_dense_group(totals, dense.on_first, first, length, start)
             continue
         for s in range(start, start + length):
-            if sparse[3, s] != 0.0:
+            if computed[s] != 0.0:
                 i = pairs[s, 0]
-                totals[0, i] += sparse[0, s]
-                totals[1, i] += sparse[1, s]
-                totals[2, i] += sparse[2, s]
+                totals[0, i] += on_first[0, s]
+                totals[1, i] += on_first[1, s]
+                totals[2, i] += on_first[2, s]
     _from_columns(totals, f, n)
 
 

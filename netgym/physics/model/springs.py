@@ -67,32 +67,83 @@ def wavefront_order(springs: np.ndarray, n_particles: int) -> np.ndarray:
     return np.argsort(wavefront, kind="stable")
 
 
+class SpringGroups(NamedTuple):
+    """The force pass's groups, one entry each, in increasing offset: the ``offset`` of its
+    springs, its ``first`` particle, its ``length`` and its ``start`` (the column of its block in
+    :class:`DenseSprings`, or its first row in :class:`SparseSprings`), all uint64; ``dense``
+    (bool): stored dense; a dense group's one stiffness ``ks`` and damping ``kd`` (0 for a
+    sparse group, whose springs carry their own)."""
+
+    offset: np.ndarray
+    first: np.ndarray
+    length: np.ndarray
+    start: np.ndarray
+    dense: np.ndarray
+    ks: np.ndarray
+    kd: np.ndarray
+
+
+class DenseSprings(NamedTuple):
+    """The dense groups' blocks, one column a place: the spring's ``rest`` length and
+    ``exists`` (1.0, or 0.0 where no spring fills the place); the pass's scratch ``on_first`` and
+    ``on_second`` (3 rows each): the force on the spring's first and second particle by
+    coordinate, -0.0 where a spring is missing or degenerate. Rows start cache lines."""
+
+    rest: np.ndarray
+    exists: np.ndarray
+    on_first: np.ndarray
+    on_second: np.ndarray
+
+
+class SparseSprings(NamedTuple):
+    """The sparse groups' springs, one row each: their ``pairs`` (uint32), ``rest`` length,
+    stiffness ``ks`` and damping ``kd``; the pass's scratch ``on_first`` (3 rows: the force on
+    the first particle by coordinate) and ``exists`` (1.0 where that force was computed, 0.0 for
+    a degenerate spring)."""
+
+    pairs: np.ndarray
+    rest: np.ndarray
+    ks: np.ndarray
+    kd: np.ndarray
+    on_first: np.ndarray
+    exists: np.ndarray
+
+
+class Columns(NamedTuple):
+    """The force pass's copies of the particles' ``positions``, ``velocities`` and force
+    ``totals``, one row a coordinate (3 rows each, of ``n_particles`` and a margin the widened
+    dense ranges reach into); rows start cache lines."""
+
+    positions: np.ndarray
+    velocities: np.ndarray
+    totals: np.ndarray
+
+    @classmethod
+    def sized(cls, n_particles: int) -> "Columns":
+        """Zeroed columns for ``n_particles`` particles."""
+        width = _round_up(n_particles, LANES) + LANES
+        return cls(aligned_zeros((3, width)), aligned_zeros((3, width)), aligned_zeros((3, width)))
+
+
 class Springs(NamedTuple):
     """The springs of a net as the kernels take them (built by :meth:`of`).
 
-    ``pairs`` (uint32) and ``params`` (rest length, ks, kd) are in :func:`wavefront_order`.
-    ``groups`` rows are (offset, first particle, length, start, dense) as uint64: a dense group
-    covers the springs (first + t, first + t + offset) for t < length at columns start + t of
-    ``dense_params`` (rest length, 1 where the spring exists else 0), all with the stiffness and
-    damping of its row of ``group_params`` (ks, kd); a sparse one lists ``length`` springs from
-    row ``start`` of ``sparse_pairs`` and ``sparse_params``. ``dense_forces`` (6 rows),
-    ``sparse_forces`` (4 rows) and ``columns`` (positions, velocities and forces by coordinate,
-    9 rows of ``n_particles`` and a margin the widened dense ranges reach into) are the force
-    pass's scratch, so a record serves one kernel call at a time (kernels hold the GIL; worker
+    ``pairs`` (uint32) and ``params`` (columns: rest length, ks, kd) are in
+    :func:`wavefront_order`. The force pass reads the :class:`SpringGroups` ``groups``: a dense
+    group covers the springs (first + t, first + t + offset) for t < length at columns start + t
+    of the :class:`DenseSprings` ``dense``; a sparse one lists ``length`` springs from row
+    ``start`` of the :class:`SparseSprings` ``sparse``. Their force scratch and the
+    :class:`Columns` ``columns`` serve one kernel call at a time (kernels hold the GIL; worker
     processes have their own).
     """
 
     n_particles: int
     pairs: np.ndarray
     params: np.ndarray
-    groups: np.ndarray
-    group_params: np.ndarray
-    dense_params: np.ndarray
-    sparse_pairs: np.ndarray
-    sparse_params: np.ndarray
-    dense_forces: np.ndarray
-    sparse_forces: np.ndarray
-    columns: np.ndarray
+    groups: SpringGroups
+    dense: DenseSprings
+    sparse: SparseSprings
+    columns: Columns
 
     @classmethod
     def of(cls, pairs: np.ndarray, params: np.ndarray, n_particles: int) -> "Springs":
@@ -117,32 +168,26 @@ class Springs(NamedTuple):
         order = np.lexsort((pairs[:, 1], pairs[:, 0]))
         pairs, params = pairs[order], params[order]
         wavefront = wavefront_order(pairs, n_particles)
-        groups, stiffness, dense, sparse, members = _offset_groups(pairs, params)
-        dense_slots = sum(block.shape[1] for block in dense)
-        dense_params = aligned_zeros((2, dense_slots))
-        if dense:
-            dense_params[:] = np.concatenate(dense, axis=1)
-        sparse_pairs = np.concatenate([p for p, _ in sparse]) if sparse else np.zeros((0, 2), dtype=np.int64)
-        sparse_params = np.concatenate([q for _, q in sparse]) if sparse else np.zeros((0, 3))
+        groups, members = _offset_groups(pairs, params)
         springs = cls(n_particles, kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
-                      np.array(groups, dtype=np.uint64).reshape(-1, 5),
-                      np.array(stiffness, dtype=np.float64).reshape(-1, 2), dense_params,
-                      kernel_indices(sparse_pairs), np.ascontiguousarray(sparse_params),
-                      aligned_zeros((6, dense_slots)), np.zeros((4, len(sparse_pairs))),
-                      aligned_zeros((9, _round_up(n_particles, LANES) + LANES)))
+                      groups.table(), groups.dense_block(), groups.sparse_list(), Columns.sized(n_particles))
         return springs, SpringLayout.of(springs, order, wavefront, members)
 
     def scratch_copy(self) -> "Springs":
         """The record with scratch arrays of its own (the rest shared)."""
-        return self._replace(dense_forces=aligned_zeros(self.dense_forces.shape),
-                             sparse_forces=np.zeros(self.sparse_forces.shape), columns=aligned_zeros(self.columns.shape))
+        dense, sparse = self.dense, self.sparse
+        return self._replace(dense=dense._replace(on_first=aligned_zeros(dense.on_first.shape),
+                                                  on_second=aligned_zeros(dense.on_second.shape)),
+                             sparse=sparse._replace(on_first=np.zeros(sparse.on_first.shape),
+                                                    exists=np.zeros(sparse.exists.shape)),
+                             columns=Columns.sized(self.n_particles))
 
 
 class SpringLayout(NamedTuple):
     """Where each spring of a list given to :meth:`Springs.laid_out` lies in its record, to
     refill the record with other stiffness and damping for the same pairs (nets drawn per
     episode): the ``template`` record, the list's rows in the record's ``params`` order
-    (``kernel_rows``) and in its ``sparse_params`` order (``sparse_rows``), and for each dense
+    (``kernel_rows``) and in its sparse list's order (``sparse_rows``), and for each dense
     group its member rows (``dense_members``, the group of each in ``member_group``) and one
     of them (``representatives``, -1 for a sparse group)."""
 
@@ -157,7 +202,7 @@ class SpringLayout(NamedTuple):
     def of(cls, springs: Springs, order: np.ndarray, wavefront: np.ndarray, members: list[np.ndarray]) -> "SpringLayout":
         """The layout of ``springs``, built from the list's rows sorted by ``order``, then put in
         ``wavefront`` order, and grouped into ``members`` (sorted rows of each group)."""
-        dense = springs.groups[:, 4] == 1
+        dense = springs.groups.dense
         sparse = [order[rows] for rows, is_dense in zip(members, dense) if not is_dense]
         grouped = [(g, order[rows]) for g, (rows, is_dense) in enumerate(zip(members, dense)) if is_dense]
         return cls(springs, order[wavefront], np.concatenate(sparse) if sparse else np.zeros(0, dtype=np.int64),
@@ -173,12 +218,16 @@ class SpringLayout(NamedTuple):
         params = np.asarray(params, dtype=np.float64)
         if not np.array_equal(params[self.dense_members, 1:], params[self.representatives[self.member_group], 1:]):
             return None
-        group_params = np.zeros_like(self.template.group_params)
         dense = self.representatives >= 0
-        group_params[dense] = params[self.representatives[dense], 1:]
-        return self.template.scratch_copy()._replace(params=np.ascontiguousarray(params[self.kernel_rows]),
-                                                     group_params=group_params,
-                                                     sparse_params=np.ascontiguousarray(params[self.sparse_rows]))
+        ks, kd = np.zeros(len(dense)), np.zeros(len(dense))
+        ks[dense], kd[dense] = params[self.representatives[dense], 1], params[self.representatives[dense], 2]
+        springs = self.template.scratch_copy()
+        sparse = params[self.sparse_rows]
+        return springs._replace(params=np.ascontiguousarray(params[self.kernel_rows]),
+                                groups=springs.groups._replace(ks=ks, kd=kd),
+                                sparse=springs.sparse._replace(rest=np.ascontiguousarray(sparse[:, 0]),
+                                                               ks=np.ascontiguousarray(sparse[:, 1]),
+                                                               kd=np.ascontiguousarray(sparse[:, 2])))
 
 
 def aligned_zeros(shape: tuple[int, int]) -> np.ndarray:
@@ -196,14 +245,47 @@ def _round_up(n: int, multiple: int) -> int:
     return -(-n // multiple) * multiple
 
 
-def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, list, list, list]:
+class _Grouping(NamedTuple):
+    """The groups of :class:`Springs` as :func:`_offset_groups` finds them, before they are
+    laid out: each group's (offset, first, length, start, dense) and (ks, kd) (zero for sparse
+    groups), the dense groups' (rest length, exists) blocks (lengths multiples of
+    :data:`LANES`) and the sparse groups' (pairs, params)."""
+
+    rows: list[tuple[int, int, int, int, bool]]
+    stiffness: list[tuple[float, float]]
+    blocks: list[np.ndarray]
+    lists: list[tuple[np.ndarray, np.ndarray]]
+
+    def table(self) -> SpringGroups:
+        """The groups' :class:`SpringGroups`."""
+        rows = np.array([row[:4] for row in self.rows], dtype=np.uint64).reshape(-1, 4)
+        stiffness = np.array(self.stiffness, dtype=np.float64).reshape(-1, 2)
+        return SpringGroups(*(np.ascontiguousarray(rows[:, c]) for c in range(4)),
+                            np.array([row[4] for row in self.rows], dtype=np.bool_),
+                            np.ascontiguousarray(stiffness[:, 0]), np.ascontiguousarray(stiffness[:, 1]))
+
+    def dense_block(self) -> DenseSprings:
+        """The dense groups' :class:`DenseSprings`, cache-line aligned."""
+        places = sum(block.shape[1] for block in self.blocks)
+        rest, exists = aligned_zeros((1, places)), aligned_zeros((1, places))
+        if self.blocks:
+            rest[0], exists[0] = np.concatenate(self.blocks, axis=1)
+        return DenseSprings(rest[0], exists[0], aligned_zeros((3, places)), aligned_zeros((3, places)))
+
+    def sparse_list(self) -> SparseSprings:
+        """The sparse groups' :class:`SparseSprings`."""
+        pairs = np.concatenate([p for p, _ in self.lists]) if self.lists else np.zeros((0, 2), dtype=np.int64)
+        params = np.concatenate([q for _, q in self.lists]) if self.lists else np.zeros((0, 3))
+        return SparseSprings(kernel_indices(pairs), *(np.ascontiguousarray(params[:, c]) for c in range(3)),
+                             np.zeros((3, len(pairs))), np.zeros(len(pairs)))
+
+
+def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[_Grouping, list[np.ndarray]]:
     """The groups of :class:`Springs` in increasing offset (one per offset, stiffness and
-    damping): their table rows, their (ks, kd) (zero for sparse groups), the dense groups'
-    parameter blocks (their lengths multiples of :data:`LANES`), the sparse groups' (pairs,
-    params) and each group's rows of ``pairs``."""
+    damping), and each group's rows of ``pairs``."""
     offsets = pairs[:, 1] - pairs[:, 0]
     keys, key_of = np.unique(np.column_stack([offsets, params[:, 1:]]), axis=0, return_inverse=True)
-    groups, stiffness, dense, sparse, members = [], [], [], [], []
+    grouping, members = _Grouping([], [], [], []), []
     dense_used = sparse_used = 0
     for k, (offset, ks, kd) in enumerate(keys):
         rows = np.flatnonzero(key_of.reshape(-1) == k)
@@ -216,13 +298,13 @@ def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[list, list, l
             block = np.zeros((2, span))
             block[0, first - lo] = params[rows, 0]
             block[1, first - lo] = 1.0
-            groups.append((int(offset), lo, span, dense_used, 1))
-            stiffness.append((ks, kd))
-            dense.append(block)
+            grouping.rows.append((int(offset), lo, span, dense_used, True))
+            grouping.stiffness.append((ks, kd))
+            grouping.blocks.append(block)
             dense_used += span
         else:
-            groups.append((int(offset), lo, len(rows), sparse_used, 0))
-            stiffness.append((0.0, 0.0))
-            sparse.append((pairs[rows], params[rows]))
+            grouping.rows.append((int(offset), lo, len(rows), sparse_used, False))
+            grouping.stiffness.append((0.0, 0.0))
+            grouping.lists.append((pairs[rows], params[rows]))
             sparse_used += len(rows)
-    return groups, stiffness, dense, sparse, members
+    return grouping, members
