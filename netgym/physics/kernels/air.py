@@ -47,9 +47,10 @@ def rk4_step(p, v, h, gravity, k, wind):
 
 
 @kernel
-def _bounce(v, restitution, friction, threshold):
-    """The ground impulse of netgym.physics.throw.flight: restitution above the threshold, Coulomb
-    friction bounded by friction times the normal impulse."""
+def bounce(v, restitution, friction, threshold):
+    """A lone ball's ground impulse, on its velocity ``v`` in place (the one law of the closed-form
+    flights of :mod:`netgym.physics.throw.flight` and of :func:`fly`): restitution above the
+    threshold, Coulomb friction bounded by friction times the normal impulse."""
     closing = v[2]
     e = restitution if -closing > threshold else 0.0
     jn = -(1.0 + e) * closing
@@ -118,7 +119,7 @@ def fly(p, v, tau, k, wind, ground, max_step):
             copy_vector(v, start_v)
             rk4_step(p, v, cut, gravity, k, wind)
             p[2] = radius
-            _bounce(v, restitution, friction, threshold)
+            bounce(v, restitution, friction, threshold)
             left -= cut
         else:
             left -= h

@@ -13,6 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from netgym.physics.kernels.air import bounce
 from netgym.physics.kernels.jit import kernel
 
 _MAX_ARCS = 200
@@ -82,14 +83,9 @@ def ground_time(p: np.ndarray, v: np.ndarray, ground: Ground) -> float:
 
 
 def _bounce(v: np.ndarray, ground: Ground) -> np.ndarray:
-    closing = v[2]
-    e = ground.restitution if -closing > ground.threshold else 0.0
-    jn = -(1.0 + e) * closing
+    """The velocity after the ground's impulse (:func:`~netgym.physics.kernels.air.bounce`)."""
     out = v.copy()
-    out[2] = -e * closing
-    slip = math.hypot(v[0], v[1])
-    if slip > 1e-12:
-        out[:2] *= 1.0 - min(ground.friction * jn, slip) / slip
+    bounce(out, ground.restitution, ground.friction, ground.threshold)
     return out
 
 
