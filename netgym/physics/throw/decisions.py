@@ -5,7 +5,7 @@
 - :func:`rule_decision`: does the scene's capture rule decide the ball where it is?
 - :func:`after_flight`: is the throw decided at the end of a piece of closed-form flight?
 - :func:`after_piece`: is it decided after a piece of integration or flight (the rule, the time
-  limit, then the fast path's own checks)?
+  limit, then the fast path's own checks), and if not, may the scene go to sleep?
 - :func:`after_check`: does the check after an integrated chunk decide it (flies away, at
   rest, cannot reach the opening)?
 - :func:`first_decided_instant`: when, within a flight, does the capture rule first decide it?
@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -41,28 +42,34 @@ def after_flight(throw: ThrowContext) -> Reason | None:
     return Reason.TIME_LIMIT if course.deadline - s.time < 0.5 * throw.sim.dt else None
 
 
-def after_piece(throw: ThrowContext) -> Reason | None:
-    """The decision after a piece of the throw, or None to go on: the capture rule's (the full
+class Verdict(NamedTuple):
+    """What :func:`after_piece` finds: the ``reason`` the throw is decided, or None; and
+    whether, undecided, the scene may go to sleep (``quiet``: nothing but the ball moves any
+    more and it could fly clear for a step)."""
+
+    reason: Reason | None
+    quiet: bool = False
+
+
+def after_piece(throw: ThrowContext) -> Verdict:
+    """The :class:`Verdict` after a piece of the throw: the capture rule's decision (the full
     simulation notes it and goes on to the time limit), the time limit, then the fast path's
-    check of the integrated scene (:func:`after_check`; when nothing but the ball moves any more
-    and it could fly clear for a step, the scene goes to sleep, so that the ball flies in closed
-    form again)."""
+    check of the integrated scene (:func:`after_check`), and whether the scene is quiet enough
+    to sleep, so that the ball flies in closed form again."""
     course, s = throw.course, throw.sim.state
     if course.decision is None:
         course.decision = rule_decision(throw, s.x[throw.ball.row], bool(s.entered[throw.ball.index]))
     if throw.fast and course.decision is not None:
-        return course.decision
+        return Verdict(course.decision)
     if course.deadline - s.time < 0.5 * throw.sim.dt:
-        return Reason.TIME_LIMIT
+        return Verdict(Reason.TIME_LIMIT)
     if not throw.fast:
-        return None
+        return Verdict(None)
     km, watch = throw.sim.kernel_model, course.watch
     others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs.pairs, km.springs.params,
                                                  km.opening, km.poles, watch)
     reason = after_check(throw, at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
-    if reason is None and others < watch.sleep_speed and flight_time(throw) > 0.0:
-        throw.sim.sleep(keep=throw.ball.row)
-    return reason
+    return Verdict(reason, reason is None and others < watch.sleep_speed and flight_time(throw) > 0.0)
 
 
 def after_check(throw: ThrowContext, at_rest: bool, unreachable: bool, lo: np.ndarray,

@@ -143,9 +143,11 @@ class Throw:
                     continue  # launched overlapping something: let the contacts act before deciding
             else:
                 yield from self._integrate_near()
-            reason = decisions.after_piece(throw)
-            if reason is not None:
-                return reason
+            verdict = decisions.after_piece(throw)
+            if verdict.reason is not None:
+                return verdict.reason
+            if verdict.quiet:
+                sim.sleep(keep=throw.ball.row)
 
     def _integrate_near(self) -> Plan:
         """Integrate everything for one chunk of CHUNK_SECONDS (less before the time limit; none
