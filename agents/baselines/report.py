@@ -21,6 +21,8 @@ PANELS_A_ROW = 4
 """Columns of the figure's grid of panels (one an id, then the performance profile)."""
 REFERENCE_COLOURS = {"random": "gray", "blind": "black", "oracle": "green"}
 """The reference runs' lines in every panel."""
+FEEDBACK_IDS = ("NetCatchWindy-v0", "NetCatchRandomized-v1")
+"""The tasks whose later throws can use the feedback of the earlier ones: their rates by throw."""
 
 
 def load_cells(out: Path) -> Cells:
@@ -102,6 +104,28 @@ def matrix(cells: Cells) -> str:
         rates = [cells.get((reference, env_id)) for env_id in ids]
         lines.append(f"| *{reference}* | " + " | ".join(f"{100 * _rates(r)[0]:.1f}%" if r else "-" for r in rates)
                      + " |")
+    return "\n".join(lines)
+
+
+def by_throw(cells: Cells, env_id: str) -> str:
+    """The markdown table of ``env_id``'s capture rate by throw index within the episode: per
+    algorithm (then reference) whose runs counted it, the IQM over those runs of each throw's
+    rate, and of the rate over every throw but the first (the throws that can use the feedback
+    of the ones before). Runs from before the count was recorded are left out (``n`` says how
+    many count)."""
+    counted = {}
+    for algo in [*learners(cells), *REFERENCES]:
+        finals = [r["final"] for r in cells.get((algo, env_id), []) if r["final"].get("by_throw")]
+        if finals:
+            counted[algo] = np.array([np.array(f["by_throw"]) / f["episodes"] for f in finals])  # (runs, throws)
+    if not counted:
+        return f"No run on {env_id} counted its captures by throw yet."
+    throws = min(rates.shape[1] for rates in counted.values())
+    lines = ["| algorithm | n | " + " | ".join(f"throw {k + 1}" for k in range(throws)) + f" | throws 2-{throws} |",
+             "|---|---:|" + "---:|" * (throws + 1)]
+    for algo, rates in counted.items():
+        per_throw = " | ".join(f"{100 * iqm(rates[:, k]):.1f}%" for k in range(throws))
+        lines.append(f"| {algo} | {len(rates)} | {per_throw} | {100 * iqm(rates[:, 1:throws].mean(axis=1)):.1f}% |")
     return "\n".join(lines)
 
 
@@ -217,5 +241,7 @@ def write_report(out: Path) -> Path:
     plot(cells, out / "curves.png")
     report = out / "report.md"
     report.write_text(f"# Baselines\n\n{matrix(cells)}\n\n![learning curves and performance profile](curves.png)\n\n"
-                      f"{table(cells)}\n\n## Protocol\n\n{protocol(cells)}\n")
+                      f"{table(cells)}\n\n## By throw\n\n"
+                      + "".join(f"{env_id}:\n\n{by_throw(cells, env_id)}\n\n" for env_id in FEEDBACK_IDS)
+                      + f"## Protocol\n\n{protocol(cells)}\n")
     return report

@@ -256,3 +256,20 @@ def test_the_best_learner_has_the_highest_iqm_and_ties_go_to_more_seeds_then_the
     assert report.best_line(cells, "NetCatchGoal-v0").startswith("ppo: 65.0% [") and "over 4 seeds at 512" in \
         report.best_line(cells, "NetCatchGoal-v0")
     assert report.best_line(cells, "NetCatchPixels-v0") == "none trained yet"
+
+
+def test_rates_by_throw_are_the_iqm_of_each_throw_over_the_runs_that_counted_them() -> None:
+    """Four runs of 10 episodes counting 5, 6, 7, 8 captures on throw 1 and 10 on throws 2-3
+    (IQM of 50-80% is the middle two's mean, 65%), one old run without the count (left out),
+    a reference counted once; a task no run counted says so."""
+    def run(by_throw: list[int] | None) -> dict:
+        final = {"rate": 0.9, "episodes": 10, **({"by_throw": by_throw} if by_throw else {})}
+        return {"final": final}
+
+    cells = {("sac", "NetCatchWindy-v0"): [run([c, 10, 10]) for c in (8, 5, 7, 6)] + [run(None)],
+             ("blind", "NetCatchWindy-v0"): [run([2, 4, 6])]}
+    lines = report.by_throw(cells, "NetCatchWindy-v0").splitlines()
+    assert lines[0] == "| algorithm | n | throw 1 | throw 2 | throw 3 | throws 2-3 |"
+    assert lines[2] == "| sac | 4 | 65.0% | 100.0% | 100.0% | 100.0% |"
+    assert lines[3] == "| blind | 1 | 20.0% | 40.0% | 60.0% | 50.0% |"
+    assert "No run on NetCatch-v0" in report.by_throw(cells, "NetCatch-v0")
