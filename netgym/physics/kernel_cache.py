@@ -33,15 +33,16 @@ def numba_cache_folder(folder: Path) -> Path | None:
         return None
 
 
-def drop_stale_kernels(folder: Path) -> None:
+def drop_stale_kernels(folder: Path, depends_on: tuple[Path, ...] = ()) -> None:
     """Delete every cached numba kernel of the sources in ``folder`` and its subfolders when any
-    ``*.py`` source there changed since the caches were stamped, so that all kernels recompile
-    together. Does nothing where numba caches nothing (or the cache cannot be written)."""
-    sources = sorted(folder.rglob("*.py"))
+    ``*.py`` source there, or in the folders ``depends_on`` (whose kernels they call), changed
+    since the caches were stamped, so that all kernels recompile together. Does nothing where
+    numba caches nothing (or the cache cannot be written)."""
     digest = hashlib.sha256()
-    for source in sources:
-        digest.update(source.relative_to(folder).as_posix().encode() + b"\0" + source.read_bytes())
-    for place in sorted({source.parent for source in sources}):
+    for root in (folder, *depends_on):
+        for source in sorted(root.rglob("*.py")):
+            digest.update(source.relative_to(root.parent).as_posix().encode() + b"\0" + source.read_bytes())
+    for place in sorted({source.parent for source in folder.rglob("*.py")}):
         _restamp(place, digest.hexdigest())
 
 

@@ -82,6 +82,30 @@ def test_the_guard_covers_kernels_in_subfolders(tmp_path: Path) -> None:
     assert _call(tmp_path, guarded=True) == "2"
 
 
+def test_a_guard_that_depends_on_another_folder_recompiles_after_a_change_there(tmp_path: Path) -> None:
+    """A caller in ``pkg/bench`` of a callee in ``pkg/physics`` (as the roofline's kernels call
+    the spring pass): guarded with ``depends_on`` it recompiles when the callee changes; guarded
+    on its own folder alone it would not."""
+    pkg = _write_package(tmp_path, 1, room="physics")
+    (pkg / "bench").mkdir()
+    (pkg / "bench" / "__init__.py").write_text("")
+    (pkg / "caller.py").rename(pkg / "bench" / "caller.py")
+    run = RUN.replace("pkg.caller", "pkg.bench.caller")
+    guards = {"own": "c.drop_stale_kernels(Path('pkg/bench')); ",
+              "both": "c.drop_stale_kernels(Path('pkg/bench'), depends_on=(Path('pkg/physics'),)); "}
+
+    def call(guard: str) -> str:
+        return subprocess.run([sys.executable, "-c", run.format(guards[guard])], cwd=tmp_path, capture_output=True,
+                              text=True, timeout=300, check=True).stdout.strip()
+
+    assert call("own") == "1"
+    (pkg / "physics" / "callee.py").write_text(textwrap.dedent(CALLEE.format(2)))
+    assert call("own") == "1"  # the hazard: its own folder did not change
+    assert call("both") == "2"
+    (pkg / "physics" / "callee.py").write_text(textwrap.dedent(CALLEE.format(3)))
+    assert call("both") == "3"
+
+
 @pytest.mark.slow
 def test_the_guard_works_where_numba_cache_dir_puts_the_cache(tmp_path: Path) -> None:
     cache_dir = tmp_path / "numba-cache"

@@ -9,7 +9,7 @@ import pytest
 
 from netgym.physics.kernels import forces, spring_law
 from netgym.physics.simulator import Simulator
-from netgym.physics.model.springs import Springs
+from netgym.physics.model.springs import EXISTS, Springs
 
 
 def _serial_spring_forces(x, v, pairs, params, f) -> None:
@@ -47,8 +47,8 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_a_scenes_net(scene: str) -> 
     _serial_spring_forces(x, v, model.springs, model.spring_params, expected)
     forces.spring_forces(x, v, springs, got)
     assert np.array_equal(_bits(got), _bits(expected))
-    dense = springs.groups.dense
-    assert springs.dense.exists.sum() > 0.9 * len(model.springs)
+    dense = springs.groups["dense"]
+    assert springs.dense_params[EXISTS].sum() > 0.9 * len(model.springs)
     assert dense.any() and (~dense).any()
 
 
@@ -57,16 +57,14 @@ def test_dense_blocks_and_columns_start_cache_lines(scene: str) -> None:
     """Every row of the dense blocks and the columns, and every dense range, starts a cache line
     (8 float64), so vector loads of first particles, parameters and forces read one line each."""
     springs = Simulator(scene).kernel_model.springs
-    blocks = (springs.dense.rest[None], springs.dense.exists[None], springs.dense.on_first, springs.dense.on_second)
-    for rows in (*blocks, *springs.columns):
+    for rows in (springs.dense_params, *springs.dense_forces, *springs.columns):
         assert rows.flags.c_contiguous and rows.ctypes.data % 64 == 0 and rows.shape[1] % 8 == 0
-    groups = springs.groups
-    dense = groups.dense
-    for start_of_range in (groups.first[dense], groups.length[dense], groups.start[dense]):
-        assert np.all(start_of_range % 8 == 0)
+    dense = springs.groups[springs.groups["dense"]]
+    for field in ("first", "length", "start"):
+        assert np.all(dense[field] % 8 == 0)
     # the widened ranges stay inside the columns
-    reach = groups.offset[dense] + groups.first[dense] + groups.length[dense]
-    assert np.all(reach <= springs.columns.positions.shape[1])
+    reach = dense["offset"] + dense["first"] + dense["length"]
+    assert np.all(reach <= springs.columns.shape[2])
 
 
 def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenerate_ones() -> None:
@@ -95,7 +93,7 @@ def test_grouped_pass_is_bitwise_the_serial_loop_on_random_springs_with_degenera
         springs = Springs.of(swapped, params[shuffled], n)
         forces.spring_forces(x, v, springs, got)
         assert np.array_equal(_bits(got), _bits(expected)), trial
-        dense_groups += int(springs.groups.dense.sum())
+        dense_groups += int(springs.groups["dense"].sum())
     assert dense_groups > 30
 
 

@@ -25,12 +25,17 @@ import math
 import re
 import time
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 from numba import njit
 
+import netgym.physics
+from netgym.physics.kernel_cache import drop_stale_kernels
 from netgym.physics.kernels import forces
 from netgym.physics.simulator import Simulator
+
+drop_stale_kernels(Path(__file__).parent, depends_on=(Path(netgym.physics.__file__).parent,))  # its kernels call physics
 
 SPRING_BYTES = 8 * (17 + 12)
 SPRING_FLOPS = 32

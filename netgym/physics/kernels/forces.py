@@ -10,6 +10,7 @@ import math
 
 from netgym.physics.kernels import spring_law
 from netgym.physics.kernels.jit import inline_kernel, kernel
+from netgym.physics.model.springs import EXISTS, ON_FIRST, ON_SECOND, POSITIONS, REST, TOTALS, VELOCITIES
 
 
 @inline_kernel
@@ -47,12 +48,14 @@ def _from_columns(columns, rows, n):
 
 
 @inline_kernel
-def _dense_group_forces(positions, velocities, dense, offset, first, length, start, ks, kd):
+def _dense_group_forces(positions, velocities, params, forces, offset, first, length, start, ks, kd):
     """Forces of the dense group (offset, first, length, start), of stiffness ``ks`` and damping
-    ``kd``, into the :class:`~netgym.physics.model.springs.DenseSprings` ``dense``'s ``on_first``
-    and ``on_second``, -0.0 (which adds nothing, bitwise) where a spring is missing or
-    degenerate. Contiguous columns and unsigned indices: the compiler vectorises this loop."""
-    rest, present, on_first, on_second = dense.rest, dense.exists, dense.on_first, dense.on_second
+    ``kd``, into ``forces`` (a :class:`~netgym.physics.model.springs.Springs`' ``dense_forces``:
+    planes ON_FIRST and ON_SECOND), -0.0 (which adds nothing, bitwise) where a spring is missing
+    or degenerate; ``params``: its ``dense_params`` (rows REST, EXISTS). Contiguous columns and
+    unsigned indices: the compiler vectorises this loop."""
+    rest, present = params[REST], params[EXISTS]
+    on_first, on_second = forces[ON_FIRST], forces[ON_SECOND]
     for t in range(length):
         i = first + t
         j = i + offset
@@ -82,8 +85,8 @@ def _dense_group_forces(positions, velocities, dense, offset, first, length, sta
 
 @inline_kernel
 def _add_dense_group(totals, forces, first, length, start):
-    """Add a dense group's ``forces`` (its block's ``on_first`` or ``on_second``) to the force
-    columns ``totals`` of the particles ``first .. first + length - 1``."""
+    """Add a dense group's ``forces`` (a plane of ``dense_forces``) to the force columns
+    ``totals`` of the particles ``first .. first + length - 1``."""
     for c in range(3):
         for t in range(length):
             totals[c, first + t] += forces[c, start + t]
@@ -96,46 +99,50 @@ def spring_forces(x, v, springs, f):
     by particle pair: on the second particles group by group in decreasing offset, then on the
     first particles in increasing offset (the :mod:`~netgym.physics.model.springs` module says why).
     The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
-    groups, dense, sparse = springs.groups, springs.dense, springs.sparse
-    positions, velocities, totals = springs.columns.positions, springs.columns.velocities, springs.columns.totals
-    pairs, on_first, computed = sparse.pairs, sparse.on_first, sparse.exists
+    groups, sparse, scratch = springs.groups, springs.sparse, springs.sparse_forces
+    columns = springs.columns
+    positions, velocities, totals = columns[POSITIONS], columns[VELOCITIES], columns[TOTALS]
     n = springs.n_particles
     _to_columns(x, positions, n)
     _to_columns(v, velocities, n)
     _to_columns(f, totals, n)
-    n_groups = groups.offset.shape[0]
+    n_groups = groups.shape[0]
     for h in range(n_groups):
-        g = n_groups - 1 - h
-        offset, first, length, start = groups.offset[g], groups.first[g], groups.length[g], groups.start[g]
-        if groups.dense[g]:
-            _dense_group_forces(positions, velocities, dense, offset, first, length, start, groups.ks[g], groups.kd[g])
-            _add_dense_group(totals, dense.on_second, first + offset, length, start)
+        group = groups[n_groups - 1 - h]
+        offset, first, length, start = group.offset, group.first, group.length, group.start
+        if group.dense:
+            _dense_group_forces(positions, velocities, springs.dense_params, springs.dense_forces, offset, first,
+                                length, start, group.ks, group.kd)
+            _add_dense_group(totals, springs.dense_forces[ON_SECOND], first + offset, length, start)
             continue
         for s in range(start, start + length):
-            i = pairs[s, 0]
-            j = pairs[s, 1]
+            spring, force = sparse[s], scratch[s]
+            i = spring.i
+            j = spring.j
             length_ij, ux, uy, uz = spring_axis(positions.T, i, j)
-            computed[s] = 0.0
+            force.exists = 0.0
             if length_ij <= 1e-12:
                 continue
             closing = ((velocities[0, i] - velocities[0, j]) * ux + (velocities[1, i] - velocities[1, j]) * uy
                        + (velocities[2, i] - velocities[2, j]) * uz)
-            mag = spring_law.tension(length_ij, sparse.rest[s], sparse.ks[s], sparse.kd[s], closing)
-            on_first[0, s], on_first[1, s], on_first[2, s], computed[s] = mag * ux, mag * uy, mag * uz, 1.0
-            totals[0, j] -= on_first[0, s]
-            totals[1, j] -= on_first[1, s]
-            totals[2, j] -= on_first[2, s]
+            mag = spring_law.tension(length_ij, spring.rest, spring.ks, spring.kd, closing)
+            force.x, force.y, force.z, force.exists = mag * ux, mag * uy, mag * uz, 1.0
+            totals[0, j] -= force.x
+            totals[1, j] -= force.y
+            totals[2, j] -= force.z
     for g in range(n_groups):
-        first, length, start = groups.first[g], groups.length[g], groups.start[g]
-        if groups.dense[g]:
-            _add_dense_group(totals, dense.on_first, first, length, start)
+        group = groups[g]
+        first, length, start = group.first, group.length, group.start
+        if group.dense:
+            _add_dense_group(totals, springs.dense_forces[ON_FIRST], first, length, start)
             continue
         for s in range(start, start + length):
-            if computed[s] != 0.0:
-                i = pairs[s, 0]
-                totals[0, i] += on_first[0, s]
-                totals[1, i] += on_first[1, s]
-                totals[2, i] += on_first[2, s]
+            force = scratch[s]
+            if force.exists != 0.0:
+                i = sparse[s].i
+                totals[0, i] += force.x
+                totals[1, i] += force.y
+                totals[2, i] += force.z
     _from_columns(totals, f, n)
 
 

@@ -67,83 +67,52 @@ def wavefront_order(springs: np.ndarray, n_particles: int) -> np.ndarray:
     return np.argsort(wavefront, kind="stable")
 
 
-class SpringGroups(NamedTuple):
-    """The force pass's groups, one entry each, in increasing offset: the ``offset`` of its
-    springs, its ``first`` particle, its ``length`` and its ``start`` (the column of its block in
-    :class:`DenseSprings`, or its first row in :class:`SparseSprings`), all uint64; ``dense``
-    (bool): stored dense; a dense group's one stiffness ``ks`` and damping ``kd`` (0 for a
-    sparse group, whose springs carry their own)."""
-
-    offset: np.ndarray
-    first: np.ndarray
-    length: np.ndarray
-    start: np.ndarray
-    dense: np.ndarray
-    ks: np.ndarray
-    kd: np.ndarray
-
-
-class DenseSprings(NamedTuple):
-    """The dense groups' blocks, one column a place: the spring's ``rest`` length and
-    ``exists`` (1.0, or 0.0 where no spring fills the place); the pass's scratch ``on_first`` and
-    ``on_second`` (3 rows each): the force on the spring's first and second particle by
-    coordinate, -0.0 where a spring is missing or degenerate. Rows start cache lines."""
-
-    rest: np.ndarray
-    exists: np.ndarray
-    on_first: np.ndarray
-    on_second: np.ndarray
-
-
-class SparseSprings(NamedTuple):
-    """The sparse groups' springs, one row each: their ``pairs`` (uint32), ``rest`` length,
-    stiffness ``ks`` and damping ``kd``; the pass's scratch ``on_first`` (3 rows: the force on
-    the first particle by coordinate) and ``exists`` (1.0 where that force was computed, 0.0 for
-    a degenerate spring)."""
-
-    pairs: np.ndarray
-    rest: np.ndarray
-    ks: np.ndarray
-    kd: np.ndarray
-    on_first: np.ndarray
-    exists: np.ndarray
-
-
-class Columns(NamedTuple):
-    """The force pass's copies of the particles' ``positions``, ``velocities`` and force
-    ``totals``, one row a coordinate (3 rows each, of ``n_particles`` and a margin the widened
-    dense ranges reach into); rows start cache lines."""
-
-    positions: np.ndarray
-    velocities: np.ndarray
-    totals: np.ndarray
-
-    @classmethod
-    def sized(cls, n_particles: int) -> "Columns":
-        """Zeroed columns for ``n_particles`` particles."""
-        width = _round_up(n_particles, LANES) + LANES
-        return cls(aligned_zeros((3, width)), aligned_zeros((3, width)), aligned_zeros((3, width)))
+GROUP = np.dtype([("offset", np.uint64), ("first", np.uint64), ("length", np.uint64), ("start", np.uint64),
+                  ("dense", np.bool_), ("ks", np.float64), ("kd", np.float64)])
+"""A group of the force pass: the ``offset`` of its springs, its ``first`` particle, its
+``length`` and its ``start`` (its first column in ``dense_params``, or its first row in
+``sparse``); ``dense``: stored dense; a dense group's one stiffness ``ks`` and damping ``kd``
+(0 for a sparse group, whose springs carry their own)."""
+SPARSE_SPRING = np.dtype([("i", np.uint32), ("j", np.uint32), ("rest", np.float64), ("ks", np.float64),
+                          ("kd", np.float64)])
+"""A spring of a sparse group: its particles ``i`` < ``j``, ``rest`` length, stiffness and damping."""
+SPARSE_FORCE = np.dtype([("x", np.float64), ("y", np.float64), ("z", np.float64), ("exists", np.float64)])
+"""The force pass's scratch for a sparse spring: the force on its first particle, and ``exists``
+(1.0 where it was computed, 0.0 for a degenerate spring)."""
+REST, EXISTS = 0, 1
+"""The rows of ``dense_params``: each place's rest length, and 1.0 where a spring fills it (else 0.0)."""
+ON_FIRST, ON_SECOND = 0, 1
+"""The planes of ``dense_forces`` (each 3 rows, one a coordinate): the force on a dense spring's
+first particle and on its second, -0.0 where a spring is missing or degenerate."""
+POSITIONS, VELOCITIES, TOTALS = 0, 1, 2
+"""The planes of ``columns`` (each 3 rows, one a coordinate, of ``n_particles`` and a margin
+the widened dense ranges reach into): the force pass's copies of the positions, velocities and
+force totals."""
 
 
 class Springs(NamedTuple):
     """The springs of a net as the kernels take them (built by :meth:`of`).
 
     ``pairs`` (uint32) and ``params`` (columns: rest length, ks, kd) are in
-    :func:`wavefront_order`. The force pass reads the :class:`SpringGroups` ``groups``: a dense
-    group covers the springs (first + t, first + t + offset) for t < length at columns start + t
-    of the :class:`DenseSprings` ``dense``; a sparse one lists ``length`` springs from row
-    ``start`` of the :class:`SparseSprings` ``sparse``. Their force scratch and the
-    :class:`Columns` ``columns`` serve one kernel call at a time (kernels hold the GIL; worker
-    processes have their own).
+    :func:`wavefront_order`. The force pass reads ``groups`` (records of :data:`GROUP`): a
+    dense group covers the springs (first + t, first + t + offset) for t < length at columns
+    start + t of ``dense_params`` (rows :data:`REST`, :data:`EXISTS`); a sparse one lists
+    ``length`` springs from row ``start`` of ``sparse`` (records of :data:`SPARSE_SPRING`). Its
+    scratch, ``dense_forces`` (planes :data:`ON_FIRST`, :data:`ON_SECOND`), ``sparse_forces``
+    (records of :data:`SPARSE_FORCE`) and ``columns`` (planes :data:`POSITIONS`,
+    :data:`VELOCITIES`, :data:`TOTALS`), serves one kernel call at a time (kernels hold the GIL;
+    worker processes have their own). Few arrays: a kernel called from Python unboxes each.
     """
 
     n_particles: int
     pairs: np.ndarray
     params: np.ndarray
-    groups: SpringGroups
-    dense: DenseSprings
-    sparse: SparseSprings
-    columns: Columns
+    groups: np.ndarray
+    dense_params: np.ndarray
+    dense_forces: np.ndarray
+    sparse: np.ndarray
+    sparse_forces: np.ndarray
+    columns: np.ndarray
 
     @classmethod
     def of(cls, pairs: np.ndarray, params: np.ndarray, n_particles: int) -> "Springs":
@@ -168,19 +137,18 @@ class Springs(NamedTuple):
         order = np.lexsort((pairs[:, 1], pairs[:, 0]))
         pairs, params = pairs[order], params[order]
         wavefront = wavefront_order(pairs, n_particles)
-        groups, members = _offset_groups(pairs, params)
+        grouping, members = _offset_groups(pairs, params)
         springs = cls(n_particles, kernel_indices(pairs[wavefront]), np.ascontiguousarray(params[wavefront]),
-                      groups.table(), groups.dense_block(), groups.sparse_list(), Columns.sized(n_particles))
+                      grouping.table(), grouping.dense_params(), aligned_zeros((2, 3, grouping.dense_places())),
+                      grouping.sparse_list(), np.zeros(grouping.sparse_count(), dtype=SPARSE_FORCE),
+                      aligned_zeros((3, 3, _round_up(n_particles, LANES) + LANES)))
         return springs, SpringLayout.of(springs, order, wavefront, members)
 
     def scratch_copy(self) -> "Springs":
         """The record with scratch arrays of its own (the rest shared)."""
-        dense, sparse = self.dense, self.sparse
-        return self._replace(dense=dense._replace(on_first=aligned_zeros(dense.on_first.shape),
-                                                  on_second=aligned_zeros(dense.on_second.shape)),
-                             sparse=sparse._replace(on_first=np.zeros(sparse.on_first.shape),
-                                                    exists=np.zeros(sparse.exists.shape)),
-                             columns=Columns.sized(self.n_particles))
+        return self._replace(dense_forces=aligned_zeros(self.dense_forces.shape),
+                             sparse_forces=np.zeros(self.sparse_forces.shape, dtype=SPARSE_FORCE),
+                             columns=aligned_zeros(self.columns.shape))
 
 
 class SpringLayout(NamedTuple):
@@ -202,7 +170,7 @@ class SpringLayout(NamedTuple):
     def of(cls, springs: Springs, order: np.ndarray, wavefront: np.ndarray, members: list[np.ndarray]) -> "SpringLayout":
         """The layout of ``springs``, built from the list's rows sorted by ``order``, then put in
         ``wavefront`` order, and grouped into ``members`` (sorted rows of each group)."""
-        dense = springs.groups.dense
+        dense = springs.groups["dense"]
         sparse = [order[rows] for rows, is_dense in zip(members, dense) if not is_dense]
         grouped = [(g, order[rows]) for g, (rows, is_dense) in enumerate(zip(members, dense)) if is_dense]
         return cls(springs, order[wavefront], np.concatenate(sparse) if sparse else np.zeros(0, dtype=np.int64),
@@ -219,22 +187,21 @@ class SpringLayout(NamedTuple):
         if not np.array_equal(params[self.dense_members, 1:], params[self.representatives[self.member_group], 1:]):
             return None
         dense = self.representatives >= 0
-        ks, kd = np.zeros(len(dense)), np.zeros(len(dense))
-        ks[dense], kd[dense] = params[self.representatives[dense], 1], params[self.representatives[dense], 2]
-        springs = self.template.scratch_copy()
-        sparse = params[self.sparse_rows]
-        return springs._replace(params=np.ascontiguousarray(params[self.kernel_rows]),
-                                groups=springs.groups._replace(ks=ks, kd=kd),
-                                sparse=springs.sparse._replace(rest=np.ascontiguousarray(sparse[:, 0]),
-                                                               ks=np.ascontiguousarray(sparse[:, 1]),
-                                                               kd=np.ascontiguousarray(sparse[:, 2])))
+        groups = self.template.groups.copy()
+        groups["ks"][dense] = params[self.representatives[dense], 1]
+        groups["kd"][dense] = params[self.representatives[dense], 2]
+        sparse = self.template.sparse.copy()
+        for field, column in (("rest", 0), ("ks", 1), ("kd", 2)):
+            sparse[field] = params[self.sparse_rows, column]
+        return self.template.scratch_copy()._replace(params=np.ascontiguousarray(params[self.kernel_rows]),
+                                                     groups=groups, sparse=sparse)
 
 
-def aligned_zeros(shape: tuple[int, int]) -> np.ndarray:
+def aligned_zeros(shape: tuple[int, ...]) -> np.ndarray:
     """A C-contiguous float64 array of zeros whose first element starts a cache line (numpy
     aligns to 16 bytes only); with a row length that is a multiple of :data:`LANES`, every row
     does."""
-    size = shape[0] * shape[1]
+    size = int(np.prod(shape))
     buffer = np.zeros(size + LANES)
     skip = (-buffer.ctypes.data // 8) % LANES
     return buffer[skip:skip + size].reshape(shape)
@@ -248,7 +215,7 @@ def _round_up(n: int, multiple: int) -> int:
 class _Grouping(NamedTuple):
     """The groups of :class:`Springs` as :func:`_offset_groups` finds them, before they are
     laid out: each group's (offset, first, length, start, dense) and (ks, kd) (zero for sparse
-    groups), the dense groups' (rest length, exists) blocks (lengths multiples of
+    groups), the dense groups' blocks (rows :data:`REST`, :data:`EXISTS`; lengths multiples of
     :data:`LANES`) and the sparse groups' (pairs, params)."""
 
     rows: list[tuple[int, int, int, int, bool]]
@@ -256,28 +223,33 @@ class _Grouping(NamedTuple):
     blocks: list[np.ndarray]
     lists: list[tuple[np.ndarray, np.ndarray]]
 
-    def table(self) -> SpringGroups:
-        """The groups' :class:`SpringGroups`."""
-        rows = np.array([row[:4] for row in self.rows], dtype=np.uint64).reshape(-1, 4)
-        stiffness = np.array(self.stiffness, dtype=np.float64).reshape(-1, 2)
-        return SpringGroups(*(np.ascontiguousarray(rows[:, c]) for c in range(4)),
-                            np.array([row[4] for row in self.rows], dtype=np.bool_),
-                            np.ascontiguousarray(stiffness[:, 0]), np.ascontiguousarray(stiffness[:, 1]))
+    def table(self) -> np.ndarray:
+        """The groups as records of :data:`GROUP`."""
+        return np.array([(*row, *stiffness) for row, stiffness in zip(self.rows, self.stiffness)], dtype=GROUP)
 
-    def dense_block(self) -> DenseSprings:
-        """The dense groups' :class:`DenseSprings`, cache-line aligned."""
-        places = sum(block.shape[1] for block in self.blocks)
-        rest, exists = aligned_zeros((1, places)), aligned_zeros((1, places))
+    def dense_places(self) -> int:
+        """Columns of the dense blocks, all groups together."""
+        return sum(block.shape[1] for block in self.blocks)
+
+    def dense_params(self) -> np.ndarray:
+        """The dense blocks side by side (rows :data:`REST`, :data:`EXISTS`), cache-line aligned."""
+        params = aligned_zeros((2, self.dense_places()))
         if self.blocks:
-            rest[0], exists[0] = np.concatenate(self.blocks, axis=1)
-        return DenseSprings(rest[0], exists[0], aligned_zeros((3, places)), aligned_zeros((3, places)))
+            params[:] = np.concatenate(self.blocks, axis=1)
+        return params
 
-    def sparse_list(self) -> SparseSprings:
-        """The sparse groups' :class:`SparseSprings`."""
-        pairs = np.concatenate([p for p, _ in self.lists]) if self.lists else np.zeros((0, 2), dtype=np.int64)
-        params = np.concatenate([q for _, q in self.lists]) if self.lists else np.zeros((0, 3))
-        return SparseSprings(kernel_indices(pairs), *(np.ascontiguousarray(params[:, c]) for c in range(3)),
-                             np.zeros((3, len(pairs))), np.zeros(len(pairs)))
+    def sparse_count(self) -> int:
+        """Springs of the sparse groups, all together."""
+        return sum(len(pairs) for pairs, _ in self.lists)
+
+    def sparse_list(self) -> np.ndarray:
+        """The sparse groups' springs as records of :data:`SPARSE_SPRING`."""
+        springs = np.zeros(self.sparse_count(), dtype=SPARSE_SPRING)
+        if self.lists:
+            pairs, params = np.concatenate([p for p, _ in self.lists]), np.concatenate([q for _, q in self.lists])
+            springs["i"], springs["j"] = pairs[:, 0], pairs[:, 1]
+            springs["rest"], springs["ks"], springs["kd"] = params[:, 0], params[:, 1], params[:, 2]
+        return springs
 
 
 def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[_Grouping, list[np.ndarray]]:
