@@ -80,7 +80,7 @@ class Checkpoint:
 
 
 CACHED_NETS = 64              # settled nets and net modes kept per process
-_SETTLED: Recent = Recent(CACHED_NETS)
+_PREPARED: Recent = Recent(CACHED_NETS)
 _MODES: Recent = Recent(CACHED_NETS)
 
 
@@ -94,8 +94,10 @@ class Simulator:
         :class:`UnstableTimeStepError`).
     :param like: a simulator of a scene that may differ from this one's only in its air (a wind
         drawn per episode); where it does, its net and kernel arrays are shared, not built again.
-    :param prepared: the settled net and its modes, worked out already (a
-        :class:`PreparedNet`); else the net is settled and analysed here (both cached per scene).
+    :param prepared: the settled net and its modes (a :class:`PreparedNet`); by default
+        :func:`prepare_net`'s for the scene (the net settled from scratch, up to a minute of
+        simulated time, once per scene and process). Pass ``prepare_net(config)`` to do that work
+        where it is wanted (before forking workers, say), or a net family's drawn net.
 
     ``awake`` is False while the net and the balls in it are at rest (a throw then need not
     integrate them while its ball flies far from them): :meth:`wake` and :meth:`sleep` are the
@@ -117,7 +119,7 @@ class Simulator:
         self.workspace = Workspace()
         self.awake = False
         self.capture_rule: CaptureRule = capture_rule(config.capture_rule)
-        self.modes = self._net_modes() if prepared is None else prepared.modes
+        self.modes = net_modes_of(self.model, config) if prepared is None else prepared.modes
         self.stable_dt = stable_dt(self.integrator, self.modes)
         if check_stability and self.dt > self.stable_dt:
             raise UnstableTimeStepError(
@@ -127,10 +129,12 @@ class Simulator:
                 f"dt <= {self.stable_dt:.3g} s, or integrator = {_stabler_than(self.integrator)}")
         self.settle_integrator = Integrator.parse(config.simulation.settle_integrator)
         self.settle_inertia = config.simulation.settle_inertia
-        self.settle_modes = self._net_modes(self.settle_inertia) if prepared is None else prepared.settle_modes
+        if prepared is None:
+            prepared = prepare_net(config, self.model)
+        self.settle_modes = prepared.settle_modes
         self.settle_dt = min(config.simulation.settle_dt,
                              SETTLE_STABILITY_SHARE * stable_dt(self.settle_integrator, self.settle_modes))
-        self.state = State.at_rest(self.model, self._settled_positions() if prepared is None else prepared.positions)
+        self.state = State.at_rest(self.model, prepared.positions)
         self._rest_state = self.state.copy()
 
     # ------------------------------------------------------------------ scene and state access
@@ -336,45 +340,58 @@ class Simulator:
         return (f"Use a smaller simulation.dt (linear stability limit of {Integrator(integrator).label} here: "
                 f"{limit:.3g} s), or integrator = {_stabler_than(integrator)}")
 
-    def _net_modes(self, inertia: float = 1.0) -> NetModes:
-        """Fastest mode of the net linearised about its built shape, its inertia ``inertia`` times
-        its mass (cached per net, springs and inertia)."""
-        key = (self.config.net, self.config.springs, inertia)
-        if key not in _MODES:
-            m = self.model
-            _MODES[key] = net_modes(m.geometry.positions, m.net_inv_mass / inertia, m.springs, m.spring_params,
-                                    m.drag)
-        return _MODES[key]
 
-    def _settled_positions(self) -> np.ndarray:
-        """The net at rest under gravity (cached per scene config; air acts on balls only, so
-        scenes that differ only in their air share it)."""
-        key = _without_air(self.config)
-        if key not in _SETTLED:
-            progress = Progress(f"settling the net of {self.model.n_net} particles", SETTLE_TIME)
-            speed = min(NEW_NET_SETTLE_SPEED, self.config.simulation.settle_speed)
-            try:  # kinetically damped near the equilibrium, then on the scene's own dynamics until it stays
-                self.run(self.relax_plan(SETTLE_TIME, settle_speed=speed), observer=progress)
-                try:
-                    self.run(self.relax_plan(SETTLE_TIME, self.integrator, self.dt, settle_speed=NEW_NET_REST_SPEED,
-                                             damped=False, window=NEW_NET_WINDOW), observer=progress)
-                except NetNotAtRestError:
-                    self.sleep()  # a heavily overdamped net creeps on for minutes: as settled as SETTLE_TIME gets it
-            except SimulationDivergedError:
-                # an unstable dt (allowed with check_stability=False) cannot hold the net still:
-                # start it from the equilibrium found with implicit Euler instead
-                self.state = State.at_rest(self.model)
-                self.run(self.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT,
-                                         settle_speed=speed), observer=progress)
-            finally:
-                progress.close()
-            _SETTLED[key] = self.state.x.copy()
-        return _SETTLED[key]
+def net_modes_of(model: Model, config: SceneConfig, inertia: float = 1.0) -> NetModes:
+    """Fastest mode of ``model``'s net (of scene ``config``) linearised about its built shape,
+    its inertia ``inertia`` times its mass (cached per net, springs and inertia)."""
+    key = (config.net, config.springs, inertia)
+    if key not in _MODES:
+        _MODES[key] = net_modes(model.geometry.positions, model.net_inv_mass / inertia, model.springs,
+                                model.spring_params, model.drag)
+    return _MODES[key]
+
+
+def prepare_net(config: SceneConfig, model: Model | None = None) -> PreparedNet:
+    """The work a new :class:`Simulator` of scene ``config`` needs done first: its net settled
+    under gravity from its built shape (up to ``SETTLE_TIME`` of simulated time, with a
+    progress bar when it takes a while) and its modes at its own inertia and the pause's.
+    Cached per scene (air acts on balls only, so scenes that differ only in their air share it);
+    ``model``: the scene's, if built already."""
+    key = _without_air(config)
+    if key not in _PREPARED:
+        model = Model.from_config(config) if model is None else model
+        built = PreparedNet(model.geometry.positions, net_modes_of(model, config),
+                            net_modes_of(model, config, config.simulation.settle_inertia))
+        settled = _settled(Simulator(config, check_stability=False, prepared=built))
+        _PREPARED[key] = dataclasses.replace(built, positions=settled)
+    return _PREPARED[key]
+
+
+def _settled(sim: Simulator) -> np.ndarray:
+    """The positions ``sim``'s net, from its built shape, comes to rest at."""
+    progress = Progress(f"settling the net of {sim.model.n_net} particles", SETTLE_TIME)
+    speed = min(NEW_NET_SETTLE_SPEED, sim.config.simulation.settle_speed)
+    try:  # kinetically damped near the equilibrium, then on the scene's own dynamics until it stays
+        sim.run(sim.relax_plan(SETTLE_TIME, settle_speed=speed), observer=progress)
+        try:
+            sim.run(sim.relax_plan(SETTLE_TIME, sim.integrator, sim.dt, settle_speed=NEW_NET_REST_SPEED,
+                                   damped=False, window=NEW_NET_WINDOW), observer=progress)
+        except NetNotAtRestError:
+            sim.sleep()  # a heavily overdamped net creeps on for minutes: as settled as SETTLE_TIME gets it
+    except SimulationDivergedError:
+        # an unstable dt (allowed with check_stability=False) cannot hold the net still:
+        # start it from the equilibrium found with implicit Euler instead
+        sim.state = State.at_rest(sim.model)
+        sim.run(sim.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT, settle_speed=speed),
+                observer=progress)
+    finally:
+        progress.close()
+    return sim.state.x.copy()
 
 
 def settled_positions(config: SceneConfig) -> np.ndarray:
     """The net of ``config`` settled from scratch under gravity (cached per scene)."""
-    return Simulator(config).state.x.copy()
+    return prepare_net(config).positions.copy()
 
 
 def _without_air(config: SceneConfig) -> SceneConfig:
