@@ -129,6 +129,23 @@ def by_throw(cells: Cells, env_id: str) -> str:
     return "\n".join(lines)
 
 
+def shipped(out: Path, models: dict[str, str]) -> str:
+    """The markdown table of the shipped models ``models`` (file name -> run, as
+    :data:`agents.policies.SHIPPED_BASELINES`), each with its run's final evaluation from its
+    result file under ``out``: the capture rate and, on tasks with feedback, throw 1 and the rest."""
+    lines = ["| agents/pretrained/ | env id | algorithm, seed | capture rate (held-out episodes) | throw 1 | later throws |",
+             "|---|---|---|---:|---:|---:|"]
+    for name, run in models.items():
+        record = read_results(out / f"{run}.json")["figures"]
+        final, by_throw = record["final"], record["final"].get("by_throw") or []
+        first, later = ("-", "-") if len(by_throw) < 2 else (
+            f"{100 * by_throw[0] / final['episodes']:.1f}%",
+            f"{100 * sum(by_throw[1:]) / (final['episodes'] * (len(by_throw) - 1)):.1f}%")
+        lines.append(f"| `{name}` | {record['env_id']} | {record['algorithm']}, seed {record['seed']} | "
+                     f"{100 * final['rate']:.1f}% | {first} | {later} |")
+    return "\n".join(lines)
+
+
 def best_learners(cells: Cells) -> dict[str, list[str]]:
     """Per env id, the learners with the highest IQM capture rate over their seeds (ties: more
     seeds, then the higher mean; learners equal in all three are all named, in the grid's order)."""

@@ -26,6 +26,7 @@ sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
 from agents.baselines import report as baselines  # noqa: E402
+from agents.policies import SHIPPED_BASELINES  # noqa: E402
 from netgym.bench.accuracy import convergence_table
 from netgym.bench.speed import roofline, speed_table  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
@@ -267,6 +268,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),
     "baselines-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES)),
+    "baselines-shipped": lambda: baselines.shipped(BASELINES, SHIPPED_BASELINES),
     "baselines-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES), "NetCatchWindy-v0"),
     "baselines-by-throw-randomized": lambda: baselines.by_throw(baselines.load_cells(BASELINES),
                                                                 "NetCatchRandomized-v1"),

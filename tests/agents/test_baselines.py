@@ -273,3 +273,30 @@ def test_rates_by_throw_are_the_iqm_of_each_throw_over_the_runs_that_counted_the
     assert lines[2] == "| sac | 4 | 65.0% | 100.0% | 100.0% | 100.0% |"
     assert lines[3] == "| blind | 1 | 20.0% | 40.0% | 60.0% | 50.0% |"
     assert "No run on NetCatch-v0" in report.by_throw(cells, "NetCatch-v0")
+
+
+def test_every_shipped_baseline_model_is_its_runs_algorithm_on_its_runs_task() -> None:
+    """Each file named in SHIPPED_BASELINES is in agents/pretrained/, saved by its run's algorithm,
+    and evaluated on its run's task by default (the file records it); its run's result exists."""
+    from agents.policies import SHIPPED_BASELINES
+
+    for name, run in SHIPPED_BASELINES.items():
+        algorithm, env_id, seed = run.split("/")
+        path = ROOT / "agents" / "pretrained" / name
+        assert path.is_file(), name
+        assert saved_algorithm(path) == algorithm.upper(), name
+        assert policy_in_env(path)[0] == env_id, name
+        assert read_results(ROOT / "docs" / "results" / "baselines" / f"{run}.json")["figures"]["seed"] == int(seed[5:])
+
+
+@pytest.mark.slow
+def test_every_shipped_baseline_model_catches_more_than_random_actions() -> None:
+    """On 5 fresh episodes of its task, each shipped model catches more than uniform random actions."""
+    from agents.evaluation import evaluate
+    from agents.policies import SHIPPED_BASELINES, load_policy
+
+    for name in SHIPPED_BASELINES:
+        env_id, policy = policy_in_env(ROOT / "agents" / "pretrained" / name)
+        model = evaluate(policy, episodes=5, seed=60_000, env_id=env_id)
+        random = evaluate(load_policy("random"), episodes=5, seed=60_000, env_id=env_id)
+        assert model.rate > random.rate + 0.3, (name, str(model), str(random))
