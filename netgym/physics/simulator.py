@@ -30,7 +30,7 @@ from netgym.physics.film import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
 from netgym.physics.recent import Recent
-from netgym.physics.model.stability import NetModes, net_modes, stable_dt
+from netgym.physics.model.stability import NetModes, net_modes_of, stable_dt
 from netgym.physics.kernels.stepping import new_counters
 
 RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
@@ -79,9 +79,8 @@ class Checkpoint:
     counters: np.ndarray
 
 
-CACHED_NETS = 64              # settled nets and net modes kept per process
+CACHED_NETS = 64              # prepared nets kept per process
 _PREPARED: Recent = Recent(CACHED_NETS)
-_MODES: Recent = Recent(CACHED_NETS)
 
 
 class Simulator:
@@ -341,16 +340,6 @@ class Simulator:
                 f"{limit:.3g} s), or integrator = {_stabler_than(integrator)}")
 
 
-def net_modes_of(model: Model, config: SceneConfig, inertia: float = 1.0) -> NetModes:
-    """Fastest mode of ``model``'s net (of scene ``config``) linearised about its built shape,
-    its inertia ``inertia`` times its mass (cached per net, springs and inertia)."""
-    key = (config.net, config.springs, inertia)
-    if key not in _MODES:
-        _MODES[key] = net_modes(model.geometry.positions, model.net_inv_mass / inertia, model.springs,
-                                model.spring_params, model.drag)
-    return _MODES[key]
-
-
 def prepare_net(config: SceneConfig, model: Model | None = None) -> PreparedNet:
     """The work a new :class:`Simulator` of scene ``config`` needs done first: its net settled
     under gravity from its built shape (up to ``SETTLE_TIME`` of simulated time, with a
@@ -387,11 +376,6 @@ def _settled(sim: Simulator) -> np.ndarray:
     finally:
         progress.close()
     return sim.state.x.copy()
-
-
-def settled_positions(config: SceneConfig) -> np.ndarray:
-    """The net of ``config`` settled from scratch under gravity (cached per scene)."""
-    return prepare_net(config).positions.copy()
 
 
 def _without_air(config: SceneConfig) -> SceneConfig:

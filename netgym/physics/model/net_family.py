@@ -32,7 +32,7 @@ import numpy as np
 
 from netgym.config import SceneConfig, to_dict
 from netgym.physics.model.model import Model
-from netgym.physics.simulator import PreparedNet, Simulator, settled_positions
+from netgym.physics.simulator import PreparedNet, Simulator, prepare_net
 from netgym.physics.model.stability import NetModes, net_modes
 
 EQUILIBRIUM_FREE_SECTIONS = ("ball", "contact", "air")
@@ -129,10 +129,10 @@ class NetFamily:
             if self.stiffness:
                 field, lo, hi = self.stiffness[0]
                 points = [lo] if lo == hi else list(np.linspace(lo, hi, EQUILIBRIA))
-                self._equilibria = [(float(ks), settled_positions(self.scene.replace({field: float(ks)})))
+                self._equilibria = [(float(ks), prepare_net(self.scene.replace({field: float(ks)})).positions.copy())
                                     for ks in points]
             else:
-                self._equilibria = [(0.0, settled_positions(self.scene))]
+                self._equilibria = [(0.0, prepare_net(self.scene).positions.copy())]
         return self._equilibria
 
 

@@ -29,7 +29,10 @@ import numpy as np
 from netgym.physics.kernels import spring_law
 from netgym.physics.kernels.integrators import damper_share, sweep_dampers
 from netgym.physics.kernels.jit import kernel
+from netgym.config import SceneConfig
 from netgym.kinds import Integrator
+from netgym.physics.model.model import Model
+from netgym.physics.recent import Recent
 
 IMEX_SEARCH_GROWTH = 1.5     # the IMEX limit is bracketed by steps growing by this factor ...
 IMEX_SEARCH_HALVINGS = 8     # ... then bisected this often (to 0.2%)
@@ -216,3 +219,18 @@ def stable_dt(integrator: int, modes: NetModes) -> float:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if stable(mid) else (lo, mid)
     return lo
+
+
+CACHED_MODES = 64
+"""Net modes kept per process (one per net, springs and inertia)."""
+_MODES: Recent = Recent(CACHED_MODES)
+
+
+def net_modes_of(model: Model, config: SceneConfig, inertia: float = 1.0) -> NetModes:
+    """Fastest mode of ``model``'s net (of scene ``config``) linearised about its built shape,
+    its inertia ``inertia`` times its mass (cached per net, springs and inertia)."""
+    key = (config.net, config.springs, inertia)
+    if key not in _MODES:
+        _MODES[key] = net_modes(model.geometry.positions, model.net_inv_mass / inertia, model.springs,
+                                model.spring_params, model.drag)
+    return _MODES[key]
