@@ -71,7 +71,8 @@ def _substeps(x, v, n_net, radius, dt, travel, speeds):
 
 
 @kernel
-def _net_box(x, n_net, box):
+def net_box(x, n_net, box):
+    """Write into ``box`` (6,) the bounding box of the net's particles: min x, y, z, max x, y, z."""
     for c in range(3):
         box[c] = math.inf
         box[c + 3] = -math.inf
@@ -154,7 +155,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net
         if entered is not None:
             if n_balls > 0:
                 _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
-                _net_box(x, n_net, box)
+                net_box(x, n_net, box)
             resolve_ball_contacts(bodies, model, box, near)
         resolve_ground(bodies, model)
         if entered is not None:
