@@ -100,3 +100,18 @@ def test_a_randomized_reset_takes_its_net_from_the_family():
     assert all(field_value(config, field) == value for field, value in info["scene_draws"].items())
     family = family_of(env._base_scene, env.randomize.ranges)
     assert np.array_equal(env.sim.state.x, family.equilibrium(config))
+
+
+def test_prepare_net_is_what_a_new_simulator_starts_from() -> None:
+    """prepare_net settles a scene once (the same record asked again) and a simulator handed it
+    starts where one that settles its own net starts, bitwise; a scene differing only in its air
+    shares it."""
+    from netgym.physics.simulator import prepare_net
+
+    config = Simulator("basket").config
+    prepared = prepare_net(config)
+    assert prepare_net(config) is prepared
+    assert prepare_net(config.replace({"air.density": 1.2})) is prepared
+    own, handed = Simulator(config), Simulator(config, prepared=prepared)
+    assert np.array_equal(own.state.x, handed.state.x) and np.array_equal(own.state.v, handed.state.v)
+    assert own.modes == handed.modes and own.settle_dt == handed.settle_dt

@@ -161,6 +161,32 @@ def test_clearance_is_the_distance_to_the_nearest_obstacle() -> None:
         assert expected - 1e-4 <= got <= expected + 1e-12
 
 
+def test_the_boxed_clearance_never_exceeds_the_exact_one() -> None:
+    """clearance_at_least (the net by its bounding box) is a lower bound of the exact clearance
+    wherever the ball is, inside the net's box and out, with another ball and the poles about;
+    equal where the poles or the other ball are nearest; far from the net it is close to it."""
+    from netgym.physics.kernels.stepping import net_box
+    from netgym.physics.throw.approach import clearance, clearance_at_least
+
+    sim = Simulator("basket")
+    m = sim.model
+    sim.launch_ball([2.5, 0.0, 1.0], [0.0, 0.0, 0.0])
+    sim.launch_ball([0.0, 0.0, 5.0], [0.0, 0.0, 0.0])
+    x, row = sim.state.x, len(sim.state.x) - 1
+    box = np.empty(6)
+    net_box(x, m.n_net, box)
+    rng = np.random.default_rng(11)
+    gaps = []
+    for _ in range(300):
+        x[row] = rng.uniform([-6, -6, 0.3], [6, 6, 8])
+        exact = clearance(x, m.n_net, row, m.ball_radius, m.segments, m.poles)
+        bound = clearance_at_least(x, m.n_net, row, m.ball_radius, box, m.poles)
+        assert bound <= exact
+        gaps.append((bound, exact))
+    far = [(b, e) for b, e in gaps if b > 3.0]
+    assert far and all(e - b < 0.5 * e for b, e in far)
+
+
 def test_a_ball_resting_on_a_jittering_net_is_decided_at_rest() -> None:
     """A ball dropped onto the goal's roof comes to rest there while the light net under it keeps
     a velocity jitter above ``rest_speed`` (of the order of its acceleration x dt): the rest test
