@@ -23,11 +23,14 @@ from netgym.errors import InvalidArgumentError
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.zip"  # trained on NetCatchWindy-v0
 PRETRAINED_WINDY_STACKED = Path(__file__).resolve().parent / "pretrained" / "ppo_windy_stack5.zip"  # the same, 5 frames
-SHIPPED_BASELINES = {"tqc_windy.zip": "tqc/NetCatchWindy-v0/seed_5",
+SHIPPED_BASELINES = {"sac_goal.zip": "sac/NetCatchGoal-v0/seed_0",
+                     "sac_noisy.zip": "sac/NetCatchNoisy-v0/seed_0",
+                     "tqc_windy.zip": "tqc/NetCatchWindy-v0/seed_5",
                      "ppo_longepisode.zip": "ppo/NetCatchLongEpisode-v0/seed_4",
                      "sac_randomized_v1.zip": "sac/NetCatchRandomized-v1/seed_3"}
 """The baselines' models shipped in ``agents/pretrained/``: each file's run (algorithm/env id/seed,
-its result file under ``docs/results/baselines/``), the best of its task's runs on fresh episodes."""
+its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRETRAINED`; the pixel
+task has none that learned."""
 
 
 SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", "TQC")
