@@ -191,8 +191,7 @@ class SpringLayout(NamedTuple):
         groups["ks"][dense] = params[self.representatives[dense], 1]
         groups["kd"][dense] = params[self.representatives[dense], 2]
         sparse = self.template.sparse.copy()
-        for field, column in (("rest", 0), ("ks", 1), ("kd", 2)):
-            sparse[field] = params[self.sparse_rows, column]
+        _set_params(sparse, params[self.sparse_rows])
         return self.template.scratch_copy()._replace(params=np.ascontiguousarray(params[self.kernel_rows]),
                                                      groups=groups, sparse=sparse)
 
@@ -214,18 +213,17 @@ def _round_up(n: int, multiple: int) -> int:
 
 class _Grouping(NamedTuple):
     """The groups of :class:`Springs` as :func:`_offset_groups` finds them, before they are
-    laid out: each group's (offset, first, length, start, dense) and (ks, kd) (zero for sparse
-    groups), the dense groups' blocks (rows :data:`REST`, :data:`EXISTS`; lengths multiples of
-    :data:`LANES`) and the sparse groups' (pairs, params)."""
+    laid out: each group's record (the fields of :data:`GROUP`), the dense groups' blocks (rows
+    :data:`REST`, :data:`EXISTS`; lengths multiples of :data:`LANES`) and the sparse groups'
+    (pairs, params)."""
 
-    rows: list[tuple[int, int, int, int, bool]]
-    stiffness: list[tuple[float, float]]
+    records: list[tuple[int, int, int, int, bool, float, float]]
     blocks: list[np.ndarray]
     lists: list[tuple[np.ndarray, np.ndarray]]
 
     def table(self) -> np.ndarray:
         """The groups as records of :data:`GROUP`."""
-        return np.array([(*row, *stiffness) for row, stiffness in zip(self.rows, self.stiffness)], dtype=GROUP)
+        return np.array(self.records, dtype=GROUP)
 
     def dense_places(self) -> int:
         """Columns of the dense blocks, all groups together."""
@@ -246,10 +244,17 @@ class _Grouping(NamedTuple):
         """The sparse groups' springs as records of :data:`SPARSE_SPRING`."""
         springs = np.zeros(self.sparse_count(), dtype=SPARSE_SPRING)
         if self.lists:
-            pairs, params = np.concatenate([p for p, _ in self.lists]), np.concatenate([q for _, q in self.lists])
+            pairs = np.concatenate([p for p, _ in self.lists])
             springs["i"], springs["j"] = pairs[:, 0], pairs[:, 1]
-            springs["rest"], springs["ks"], springs["kd"] = params[:, 0], params[:, 1], params[:, 2]
+            _set_params(springs, np.concatenate([q for _, q in self.lists]))
         return springs
+
+
+def _set_params(springs: np.ndarray, params: np.ndarray) -> None:
+    """Write ``params`` (n, 3: rest length, ks, kd) into the records ``springs`` of
+    :data:`SPARSE_SPRING`."""
+    for column, field in enumerate(("rest", "ks", "kd")):
+        springs[field] = params[:, column]
 
 
 def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[_Grouping, list[np.ndarray]]:
@@ -257,7 +262,7 @@ def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[_Grouping, li
     damping), and each group's rows of ``pairs``."""
     offsets = pairs[:, 1] - pairs[:, 0]
     keys, key_of = np.unique(np.column_stack([offsets, params[:, 1:]]), axis=0, return_inverse=True)
-    grouping, members = _Grouping([], [], [], []), []
+    grouping, members = _Grouping([], [], []), []
     dense_used = sparse_used = 0
     for k, (offset, ks, kd) in enumerate(keys):
         rows = np.flatnonzero(key_of.reshape(-1) == k)
@@ -268,15 +273,13 @@ def _offset_groups(pairs: np.ndarray, params: np.ndarray) -> tuple[_Grouping, li
             lo -= lo % LANES
             span = _round_up(int(first.max()) + 1 - lo, LANES)
             block = np.zeros((2, span))
-            block[0, first - lo] = params[rows, 0]
-            block[1, first - lo] = 1.0
-            grouping.rows.append((int(offset), lo, span, dense_used, True))
-            grouping.stiffness.append((ks, kd))
+            block[REST, first - lo] = params[rows, 0]
+            block[EXISTS, first - lo] = 1.0
+            grouping.records.append((int(offset), lo, span, dense_used, True, ks, kd))
             grouping.blocks.append(block)
             dense_used += span
         else:
-            grouping.rows.append((int(offset), lo, len(rows), sparse_used, False))
-            grouping.stiffness.append((0.0, 0.0))
+            grouping.records.append((int(offset), lo, len(rows), sparse_used, False, 0.0, 0.0))
             grouping.lists.append((pairs[rows], params[rows]))
             sparse_used += len(rows)
     return grouping, members
