@@ -137,11 +137,12 @@ def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
                         or air.cannot_reach(p, u, wind, box, watch.deadline - t)):
             return t
         gap = clearance_at_least(x, n_net, row, radius, asleep, model.poles)
-        if gap <= watch.clearance or air_safe_time(speed(u), gap, gravity, k, wind, piece) < piece:
-            gap = clearance(x, n_net, row, radius, model.segments, model.poles)
-        if gap <= watch.clearance:
-            return t
         bound = air_safe_time(speed(u), gap, gravity, k, wind, piece)
+        if gap <= watch.clearance or bound < piece:  # the exact clearance could change the piece
+            gap = clearance(x, n_net, row, radius, model.segments, model.poles)
+            if gap <= watch.clearance:
+                return t
+            bound = air_safe_time(speed(u), gap, gravity, k, wind, piece)
         tau = on_step_grid(t, min(bound, watch.deadline - t), watch.launched, watch.dt)
         if tau <= 0.0 or watch.deadline - (t + tau) < 0.5 * watch.dt:
             return t
