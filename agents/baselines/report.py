@@ -117,7 +117,7 @@ def by_throw(cells: Cells, env_id: str) -> str:
     for algo in [*learners(cells), *REFERENCES]:
         finals = [r["final"] for r in cells.get((algo, env_id), []) if r["final"].get("by_throw")]
         if finals:
-            counted[algo] = np.array([np.array(f["by_throw"]) / f["episodes"] for f in finals])  # (runs, throws)
+            counted[algo] = np.array([_throw_rates(final) for final in finals])  # (runs, throws)
     if not counted:
         return f"No run on {env_id} counted its captures by throw yet."
     throws = min(rates.shape[1] for rates in counted.values())
@@ -129,6 +129,12 @@ def by_throw(cells: Cells, env_id: str) -> str:
     return "\n".join(lines)
 
 
+def _throw_rates(final: dict[str, Any]) -> np.ndarray:
+    """A run's capture rate by throw index, from its final evaluation's counts (empty if it has
+    none)."""
+    return np.asarray(final.get("by_throw") or [], dtype=np.float64) / final["episodes"]
+
+
 def shipped(out: Path, models: dict[str, str]) -> str:
     """The markdown table of the shipped models ``models`` (file name -> run, as
     :data:`agents.policies.SHIPPED_BASELINES`), each with its run's final evaluation from its
@@ -137,10 +143,8 @@ def shipped(out: Path, models: dict[str, str]) -> str:
              "|---|---|---|---:|---:|---:|"]
     for name, run in models.items():
         record = read_results(out / f"{run}.json")["figures"]
-        final, by_throw = record["final"], record["final"].get("by_throw") or []
-        first, later = ("-", "-") if len(by_throw) < 2 else (
-            f"{100 * by_throw[0] / final['episodes']:.1f}%",
-            f"{100 * sum(by_throw[1:]) / (final['episodes'] * (len(by_throw) - 1)):.1f}%")
+        final, rates = record["final"], _throw_rates(record["final"])
+        first, later = ("-", "-") if len(rates) < 2 else (f"{100 * rates[0]:.1f}%", f"{100 * rates[1:].mean():.1f}%")
         lines.append(f"| `{name}` | {record['env_id']} | {record['algorithm']}, seed {record['seed']} | "
                      f"{100 * final['rate']:.1f}% | {first} | {later} |")
     return "\n".join(lines)
