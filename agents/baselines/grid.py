@@ -34,20 +34,21 @@ BUDGETS: dict[str, int] = {
     "NetCatchGoal-v0": 20_480,
     "NetCatchNoisy-v0": 20_480,
     "NetCatchWindy-v0": 30_720,
-    "NetCatchPixels-v0": 20_480,
+    "NetCatchPixels-v0": 491_520,
     "NetCatchLongEpisode-v0": 20_480,
     "NetCatchRandomized-v0": 20_480,
     "NetCatchRandomized-v1": 30_720,
 }
 """Environment steps (throws) of every learning run on the id. Multiples of 512, so that PPO's
-rollouts (8 envs x 64 steps) end on the budget. On NetCatch-v0 PPO passed 95% at 12,288-16,384
+rollouts (8 envs x 64 steps; x 128 on pixels) end on the budget. On NetCatch-v0 PPO passed 95% at 12,288-16,384
 steps (docs/AGENTS.md), SAC, TD3 and TQC at 2,000-4,000; on the windy id PPO needed ~40,000 for
 95%. Measured on one core (2026-12-03, 4096 steps from scratch, training only): NetCatch-v0 PPO
 273 steps/s, TD3 150, SAC 103, TQC 89; NetCatchWindy-v0 PPO 166, SAC 91; NetCatchPixels-v0
 PPO-CNN 47. Taking a catching policy's later steps at 60% of those rates, the table of 5 seeds
 is ~27,000 CPU seconds, ~3.8 hours on 2 cores (the limit: 6). NetCatchLongEpisode-v0 asks the
 same aim as NetCatch-v0 into a fuller net, so it gets NetCatch-v0's budget; NetCatchRandomized-v1,
-5 throws with feedback like the windy id, gets the windy id's."""
+5 throws with feedback like the windy id, gets the windy id's. Pixels get 24x NetCatch-v0's
+budget: the CNN's settings climbed only slowly (ppo_cnn.yml), ~115 minutes a seed on one core."""
 TABLE_IDS = ("NetCatch-v0", "NetCatchGoal-v0", "NetCatchNoisy-v0", "NetCatchWindy-v0", "NetCatchPixels-v0",
              "NetCatchLongEpisode-v0", "NetCatchRandomized-v1")
 """The ids of the table (the default)."""
