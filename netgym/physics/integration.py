@@ -21,6 +21,7 @@ from netgym.kinds import Integrator
 from netgym.physics.model.model import KernelModel, Settings, State
 from netgym.physics.kernels.watch import Watch
 from netgym.physics.kernels.watch import integrate_watched as integrate_kernel
+from netgym.physics.kernels.watch import roll_watched
 
 
 class Integrand(Protocol):
@@ -75,22 +76,34 @@ class RestTest:
 
 
 def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps: int,
-              workspace: Workspace) -> SimulationDivergedError | None:
+              workspace: Workspace, alone: int = -1) -> SimulationDivergedError | None:
     """Advance ``target.state`` by ``n_steps`` steps (none when 0), in place, and add the work
-    to its counters. Returns None, or the error when the integration diverged (the state is
-    then restored as it was before the call)."""
+    to its counters; ``alone``: the row of a ball stepped alone, everything else asleep, for as
+    many of them as it can touch nothing that moves
+    (:func:`~netgym.physics.kernels.stepping.advance_alone`), or -1. Returns None, or the error
+    when the integration diverged (the state is then restored as it was before the call)."""
     s = target.state
+    if alone >= 0:
+        def alone_kernel() -> tuple[int, float]:
+            status, taken = stepping.advance_alone(s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps, alone,
+                                                   target.counters)
+            return status, s.time + taken * settings.dt
+        return _guarded(target, settings, n_steps, alone_kernel)
     return _guarded(target, settings, n_steps, lambda: (stepping.advance(
         s.x, s.v, s.inv_mass, s.entered, model, settings, n_steps,
         workspace.scratch(s, model), target.counters), s.time + n_steps * settings.dt))
 
 
 def integrate_watched(target: Integrand, model: KernelModel, settings: Settings, workspace: Workspace,
-                      watch: Watch) -> SimulationDivergedError | None:
+                      watch: Watch, alone: bool = False) -> SimulationDivergedError | None:
     """Integrate ``target.state`` chunk after chunk until ``watch`` sees something that could
-    be decided (see :func:`~netgym.physics.kernels.watch.integrate_watched`); returns as
-    :func:`integrate` does."""
+    be decided (see :func:`~netgym.physics.kernels.watch.integrate_watched`; ``alone``: the
+    watch's ball alone, everything else asleep, :func:`~netgym.physics.kernels.watch.roll_watched`);
+    returns as :func:`integrate` does."""
     s = target.state
+    if alone:
+        return _guarded(target, settings, round((watch.deadline - s.time) / settings.dt), lambda: roll_watched(
+            s.x, s.v, s.inv_mass, s.entered, model, settings, target.counters, watch, s.time))
     return _guarded(target, settings, round((watch.deadline - s.time) / settings.dt), lambda: integrate_kernel(
         s.x, s.v, s.inv_mass, s.entered, model, settings, workspace.scratch(s, model),
         target.counters, watch, s.time))

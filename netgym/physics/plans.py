@@ -2,9 +2,10 @@
 
 A plan is a generator that holds all the decisions of a piece of simulation (a throw, the
 relaxation of the net) and yields typed requests: :class:`Integrate` (integrate this many
-steps), :class:`Watched` (integrate chunk after chunk until a throw's watch sees something it
-could decide), :class:`Relax` (relax for at most this many steps, until a rest test passes)
-or :class:`Tick` (time moved in closed form: a moment to observe, e.g. record a frame).
+steps, or step one ball alone), :class:`Watched` (integrate chunk after chunk until a throw's
+watch sees something it could decide), :class:`Relax` (relax for at most this many steps,
+until a rest test passes) or :class:`Tick` (time moved in closed form: a moment to observe,
+e.g. record a frame).
 It returns its result. :func:`drive` is the only code that resumes plans: it carries out the
 requests of a simulator's plan, one integration call per :class:`Integrate` (one per piece
 between frame instants when it films, with a :class:`~netgym.physics.film.Film`), and throws
@@ -28,22 +29,27 @@ CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's de
 
 @dataclass(frozen=True)
 class Integrate:
-    """Request: integrate ``n_steps`` steps of ``dt`` with ``integrator`` (an Integrator code)."""
+    """Request: integrate ``n_steps`` steps of ``dt`` with ``integrator`` (an Integrator code);
+    ``alone``: only the ball of this row moves, everything else asleep, for as many of the steps
+    as it can touch nothing that moves (-1: everything, every step)."""
 
     n_steps: int
     integrator: int
     dt: float
+    alone: int = -1
 
 
 @dataclass(frozen=True)
 class Watched:
     """Request: integrate chunk after chunk of ``watch.chunk`` steps of ``dt`` with
     ``integrator`` until the :class:`~netgym.physics.kernels.watch.Watch` sees something that could be
-    decided (not for a filmed plan: a film needs every chunk)."""
+    decided (not for a filmed plan: a film needs every chunk); ``alone``: only the watch's ball
+    moves, everything else asleep."""
 
     integrator: int
     dt: float
     watch: Watch
+    alone: bool = False
 
 
 @dataclass(frozen=True)
@@ -102,12 +108,12 @@ def drive(sim: Drivable, plan: Plan, workspace: Workspace, film: Film | None = N
             continue  # filmed piece by piece
         if isinstance(request, Integrate):
             error = integrate(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
-                              workspace)
+                              workspace, request.alone)
         elif isinstance(request, Watched):
             if film is not None:
                 raise TypeError("a filmed plan integrates chunk by chunk (Integrate requests), not Watched ones")
             error = integrate_watched(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), workspace,
-                                      request.watch)
+                                      request.watch, request.alone)
         elif isinstance(request, Relax):
             error = relax(sim, sim.kernel_model, sim.settings(request.integrator, request.dt), request.n_steps,
                           workspace, request.rest)
@@ -129,10 +135,13 @@ def _integrate_filmed(sim: Drivable, request: Integrate, workspace: Workspace, f
     end, left = state.time + request.n_steps * request.dt, request.n_steps
     while left > 0:
         n = min(left, film.clock.steps_to_next(state.time, request.dt))
-        error = integrate(sim, sim.kernel_model, settings, n, workspace)
+        piece_end = state.time + n * request.dt
+        error = integrate(sim, sim.kernel_model, settings, n, workspace, request.alone)
         if error is not None:
             return error
         left -= n
         film(sim, request.dt)
+        if state.time < piece_end - 0.5 * request.dt:
+            return None  # a ball stepped alone stopped short: it could touch something that moves
     state.time = end
     return None

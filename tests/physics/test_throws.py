@@ -134,7 +134,7 @@ def test_remove_ball_checks_its_index() -> None:
 
 
 def test_clearance_is_the_distance_to_the_nearest_obstacle() -> None:
-    from netgym.physics.throw.approach import clearance
+    from netgym.physics.kernels.surroundings import clearance
 
     sim = _sim("basket")
     m = sim.model
@@ -166,7 +166,7 @@ def test_the_boxed_clearance_never_exceeds_the_exact_one() -> None:
     wherever the ball is, inside the net's box and out, with another ball and the poles about;
     equal where the poles or the other ball are nearest; far from the net it is close to it."""
     from netgym.physics.kernels.stepping import net_box
-    from netgym.physics.throw.approach import clearance, clearance_at_least
+    from netgym.physics.kernels.surroundings import clearance, clearance_at_least
 
     sim = Simulator("basket")
     m = sim.model

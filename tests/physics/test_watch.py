@@ -1,6 +1,6 @@
 """The throw's compiled loops change nothing: integrating chunk after chunk in one kernel call
-(watch.integrate_watched) and flying the approach's pieces in one (approach.approach, and
-approach.approach_through_air through air) give,
+(watch.integrate_watched; watch.roll_watched for the ball alone) and flying the approach's pieces
+in one (approach.approach, and approach.approach_through_air through air) give,
 bit for bit, the throws that decide after every chunk and fly every piece in Python; and the
 rest window keeps what the rest test needs."""
 
@@ -50,12 +50,13 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
     """Under ``held`` the goal's roof holds a ball that comes to rest there while the loop runs;
     through air, the pieces are flown by ``approach_through_air``."""
     launches = SPECIAL[scene] + sample_throws(scene, 16, seed=11)
-    calls = {"watched": 0, "pieces": 0}
+    calls = {"watched": 0, "pieces": 0, "alone": 0}
     kernel, fly = recipe.Watched, getattr(approach, flight)
 
-    def watched(integrator, dt, watch):
+    def watched(integrator, dt, watch, alone=False):
         calls["watched"] += 1
-        return kernel(integrator, dt, watch)
+        calls["alone"] += alone
+        return kernel(integrator, dt, watch, alone)
 
     def pieces(*args):
         time = fly(*args)
@@ -65,12 +66,13 @@ def test_the_compiled_loops_give_the_python_loops_throws_bit_for_bit(scene: str,
     monkeypatch.setattr(recipe, "Watched", watched)
     monkeypatch.setattr(approach, flight, pieces)
     compiled = _throw_all(Simulator(scene, overrides), launches)
-    assert calls["watched"] > 0 and calls["pieces"] > 0  # both loops took part
+    assert calls["watched"] > 0 and calls["pieces"] > 0 and calls["alone"] > 0  # every loop took part
 
     sim = Simulator(scene, overrides)
 
-    def one_chunk(integrator, dt, watch):  # what a throw asked for before the watched loop
-        return Integrate(min(watch.chunk, round((watch.deadline - sim.state.time) / dt)), integrator, dt)
+    def one_chunk(integrator, dt, watch, alone=False):  # what a throw asked for before the watched loop
+        return Integrate(min(watch.chunk, round((watch.deadline - sim.state.time) / dt)), integrator, dt,
+                         watch.row if alone else -1)
 
     monkeypatch.setattr(recipe, "Watched", one_chunk)
     monkeypatch.setattr(approach, flight, lambda *args: args[TIME])  # no piece flown in the kernel

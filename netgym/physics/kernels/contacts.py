@@ -330,7 +330,7 @@ def resolve_ball_contacts(bodies, model, net_box, near):
     :class:`~netgym.physics.model.model.KernelModel`, ``near``: scratch for ``n_net`` particle indices).
     """
     x = bodies.x
-    n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold
+    n_net, radius, threshold = model.n_net, model.ball_radius, model.restitution_threshold
     n = x.shape[0]
     reach = 2.0 * radius
     for b in range(n_net, n):
@@ -342,27 +342,51 @@ def resolve_ball_contacts(bodies, model, net_box, near):
             if dist2 >= reach * reach:
                 continue
             nx, ny, nz, dist = _direction(dx, dy, dz, dist2, 0.0, 0.0, 0.0)
-            _pair_response(bodies, b, c, c, 0.0, Touch(nx, ny, nz, reach - dist), materials.ball_ball, threshold)
+            _pair_response(bodies, b, c, c, 0.0, Touch(nx, ny, nz, reach - dist), model.materials.ball_ball, threshold)
     extent = -1.0  # the segments' largest extent, measured when a ball first meets the net
     moved = 0.0  # how far the net contacts since may have moved a particle, which stretches a segment as much
     for b in range(n_net, n):
-        _ball_poles(bodies, b, radius, model.poles, materials.ball_pole, threshold)
-        if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
-                and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
-                and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
-            if extent < 0.0:
-                extent = _segment_extent(x, model.segments)
-            moved += _ball_net(bodies, b, model, extent + 2.0 * moved, near)
+        extent, moved = _ball_poles_and_net(bodies, b, model, net_box, near, extent, moved)
+
+
+@kernel
+def resolve_lone_ball(bodies, b, model, net_box, near):
+    """Resolve ball ``b``'s contacts with the poles and the net once, as :func:`resolve_ball_contacts`
+    does, the other balls left out (a ball moving alone, clear of them)."""
+    _ball_poles_and_net(bodies, b, model, net_box, near, -1.0, 0.0)
+
+
+@inline_kernel
+def _ball_poles_and_net(bodies, b, model, net_box, near, extent, moved):
+    """Resolve ball ``b`` against the poles, then the net if it overlaps ``net_box``; returns
+    (``extent``, ``moved``) carried on (see :func:`resolve_ball_contacts`: the segments' largest
+    extent, measured when a ball first meets the net, or -1.0; how far the net contacts since may
+    have moved a particle, which stretches a segment as much)."""
+    x, radius = bodies.x, model.ball_radius
+    _ball_poles(bodies, b, radius, model.poles, model.materials.ball_pole, model.restitution_threshold)
+    if (x[b, 0] + radius > net_box[0] and x[b, 0] - radius < net_box[3]
+            and x[b, 1] + radius > net_box[1] and x[b, 1] - radius < net_box[4]
+            and x[b, 2] + radius > net_box[2] and x[b, 2] - radius < net_box[5]):
+        if extent < 0.0:
+            extent = _segment_extent(x, model.segments)
+        moved += _ball_net(bodies, b, model, extent + 2.0 * moved, near)
+    return extent, moved
 
 
 @kernel
 def resolve_ground(bodies, model):
     """Resolve every body's contact with the ground once, after :func:`resolve_ball_contacts` (a net
     without balls needs only this pass, so that its relaxation compiles without the balls')."""
+    for k in range(bodies.x.shape[0]):
+        resolve_body_ground(bodies, k, model)
+
+
+@inline_kernel
+def resolve_body_ground(bodies, k, model):
+    """Resolve body ``k``'s contact with the ground (a ball's sphere, a net particle's point)."""
     x, inv_mass = bodies.x, bodies.inv_mass
     n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold
-    for k in range(x.shape[0]):
-        floor = radius if k >= n_net else 0.0
-        if x[k, 2] < floor and inv_mass[k] > 0.0:
-            material = materials.ball_ground if k >= n_net else materials.net_ground
-            _static_response(bodies, k, Touch(0.0, 0.0, 1.0, floor - x[k, 2]), material, threshold, k >= n_net)
+    floor = radius if k >= n_net else 0.0
+    if x[k, 2] < floor and inv_mass[k] > 0.0:
+        material = materials.ball_ground if k >= n_net else materials.net_ground
+        _static_response(bodies, k, Touch(0.0, 0.0, 1.0, floor - x[k, 2]), material, threshold, k >= n_net)

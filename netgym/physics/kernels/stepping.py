@@ -6,13 +6,14 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from netgym.physics.kernels.jit import kernel
+from netgym.physics.kernels.jit import inline_kernel, kernel
 
 from netgym.physics.kernels.air import rk4_step
-from netgym.physics.kernels.contacts import Bodies, resolve_ball_contacts, resolve_ground
+from netgym.physics.kernels.contacts import Bodies, resolve_ball_contacts, resolve_body_ground, resolve_ground, resolve_lone_ball
 from netgym.physics.kernels.forces import kinetic_energy
 from netgym.physics.kernels.integrators import START_SLOT, smooth_step
 from netgym.physics.kernels.rows import copy_row, copy_rows
+from netgym.physics.kernels.surroundings import alone_for_a_step
 
 OK, DIVERGED = 0, 1
 COUNTERS = np.dtype([("substeps", np.int64), ("cg_iterations", np.int64)])
@@ -88,17 +89,23 @@ def _free_ball_flight(x, v, before, before_v, n_net, gravity, h, ball_drag, wind
     their free flight over ``h`` from the substep's start, whatever the integrator: the exact
     parabola without air (no time-discretisation error), an RK4 step through air."""
     for b in range(before.shape[0]):
-        k = n_net + b
-        if ball_drag > 0.0:
-            copy_row(x, k, before, b)
-            copy_row(v, k, before_v, b)
-            rk4_step(x[k], v[k], h, gravity, ball_drag, wind)
-            continue
-        for c in range(3):
-            x[k, c] = before[b, c] + h * before_v[b, c]
-            v[k, c] = before_v[b, c]
-        x[k, 2] += 0.5 * gravity * h * h
-        v[k, 2] += gravity * h
+        _fly_ball(x, v, n_net + b, before, before_v, b, gravity, h, ball_drag, wind)
+
+
+@inline_kernel
+def _fly_ball(x, v, k, before, before_v, b, gravity, h, ball_drag, wind):
+    """The free flight over ``h`` of the ball in row ``k`` of ``x``, ``v`` from its position and
+    velocity in row ``b`` of ``before``, ``before_v`` (see :func:`_free_ball_flight`)."""
+    if ball_drag > 0.0:
+        copy_row(x, k, before, b)
+        copy_row(v, k, before_v, b)
+        rk4_step(x[k], v[k], h, gravity, ball_drag, wind)
+        return
+    for c in range(3):
+        x[k, c] = before[b, c] + h * before_v[b, c]
+        v[k, c] = before_v[b, c]
+    x[k, 2] += 0.5 * gravity * h * h
+    v[k, 2] += gravity * h
 
 
 @kernel
@@ -187,6 +194,41 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
             return DIVERGED
         _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, model.gravity)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
+
+
+@kernel
+def advance_alone(x, v, inv_mass, entered, model, settings, n_steps, row, stats):
+    """Advance the ball in ``row`` by up to ``n_steps`` steps of ``settings.dt``, everything else
+    held still (a sleeping scene), in place, while it can touch nothing that moves within the
+    next step (:func:`~netgym.physics.kernels.surroundings.alone_for_a_step`): the steps
+    :func:`advance` takes when nothing but that ball moves and it touches only what cannot (poles,
+    pinned particles, the ground), with the same arithmetic. Returns (OK, the steps taken), or
+    (DIVERGED, 0) as :func:`advance` diverges."""
+    n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
+    start = x.copy()  # only the ball's row changes
+    before, before_v, b = start[n_net:], np.empty((x.shape[0] - n_net, 3)), row - n_net
+    box, near = np.empty(6), np.empty(n_net, dtype=np.int64)
+    net_box(x, n_net, box)
+    bodies = Bodies(x, v, inv_mass, start)
+    ball = v[row:row + 1]
+    travel = settings.max_travel * radius
+    for taken in range(n_steps):
+        if not _finite_and_below(ball, settings.divergence_speed):
+            return DIVERGED, 0
+        if not alone_for_a_step(x, v, inv_mass, model, row, dt):
+            return OK, taken
+        speed = math.sqrt(ball[0, 0] ** 2 + ball[0, 1] ** 2 + ball[0, 2] ** 2)
+        substeps = max(1, int(math.ceil(speed * dt / travel)))  # :func:`_substeps` with all else still
+        h = dt / substeps
+        for _sub in range(substeps):
+            copy_row(start, row, x, row)
+            copy_row(before_v, b, v, row)
+            _fly_ball(x, v, row, before, before_v, b, model.gravity, h, model.ball_drag, model.wind)
+            resolve_lone_ball(bodies, row, model, box, near)
+            resolve_body_ground(bodies, row, model)
+            update_entered(x, before, n_net, entered, model.opening)
+            stats[0].substeps += 1
+    return (OK, n_steps) if _finite_and_below(ball, settings.divergence_speed) else (DIVERGED, 0)
 
 
 @kernel

@@ -7,7 +7,8 @@ The fast path's decisions stay in :mod:`netgym.physics.throws`; after each chunk
 around everything else, at rest, or out of the opening's reach). :func:`integrate_watched`
 makes the same check after each chunk within one kernel call and hands back to the throw as
 soon as it, the capture rule or the time limit could decide anything (or the scene could go
-to sleep). The throw then decides on that state with the same check, so a throw crosses into
+to sleep); :func:`roll_watched` does the same for the ball stepped alone while the scene
+sleeps. The throw then decides on that state with the same check, so a throw crosses into
 Python once per decision, not once per chunk, and decides exactly as if it had looked after
 every chunk.
 """
@@ -19,12 +20,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from netgym.physics.kernels.jit import kernel
+from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_depth
 from netgym.physics.kernels.reach import Budget, out_of_reach
 from netgym.physics.kernels.rows import copy_rows
-from netgym.physics.kernels.stepping import DIVERGED, OK, advance
-from netgym.physics.kernels.surroundings import still_since, survey
+from netgym.physics.kernels.stepping import DIVERGED, OK, advance, advance_alone
+from netgym.physics.kernels.surroundings import clearance, still_since, survey
 
 
 class RestWindow(NamedTuple):
@@ -136,6 +137,25 @@ def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
     return others, inside, rest, unreachable
 
 
+@inline_kernel
+def _next_chunk(watch, t, dt):
+    """Steps of the chunk from ``t``: ``watch.chunk``, fewer before the deadline, none at it."""
+    return max(0, min(watch.chunk, round((watch.deadline - t) / dt)))
+
+
+@inline_kernel
+def _decidable(x, v, inv_mass, model, watch, t, dt):
+    """After a chunk that ended at ``t``: (whether something could be decided now, the largest
+    velocity component of everything but the ball): the deadline is within half a step, the ball
+    lies at least ``rule_depth`` past the opening's plane, or :func:`near_check` (not made in
+    those two cases) finds it outside the box, at rest or out of reach."""
+    if watch.deadline - t < 0.5 * dt or opening_depth(model.opening, x[watch.row]) >= watch.rule_depth:
+        return True, 0.0
+    others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model.springs.pairs, model.springs.params,
+                                                    model.opening, model.poles, watch)
+    return not inside or rest or unreachable, others
+
+
 @kernel
 def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, watch, time):
     """Integrate chunk after chunk of ``watch.chunk`` steps (fewer before the deadline), with
@@ -144,20 +164,39 @@ def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, 
     ``rule_depth`` past the opening's plane, or :func:`near_check` finds everything else
     slower than ``sleep_speed``, the ball outside the box, at rest or out of reach. Returns
     (OK or DIVERGED, the time reached), each chunk's time added as the throw adds it."""
-    dt, opening, row = settings.dt, model.opening, watch.row
-    t = time
+    dt, t = settings.dt, time
     while True:
-        left = round((watch.deadline - t) / dt)
-        if left <= 0:
+        n = _next_chunk(watch, t, dt)
+        if n == 0:
             return OK, t
-        n = min(watch.chunk, left)
         if advance(x, v, inv_mass, entered, model, settings, n, scratch, stats) != OK:
             return DIVERGED, t
         t += n * dt
-        if watch.deadline - t < 0.5 * dt or opening_depth(opening, x[row]) >= watch.rule_depth:
-            return OK, t
-        others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model.springs.pairs, model.springs.params,
-                                                        opening, model.poles, watch)
-        if others < watch.sleep_speed or not inside or rest or unreachable:
+        decidable, others = _decidable(x, v, inv_mass, model, watch, t, dt)
+        if decidable or others < watch.sleep_speed:
             return OK, t
 
+
+@kernel
+def roll_watched(x, v, inv_mass, entered, model, settings, stats, watch, time):
+    """:func:`integrate_watched` for the ball of ``watch.row`` alone, everything else asleep
+    (:func:`~netgym.physics.kernels.stepping.advance_alone`): chunk after chunk, until a chunk
+    stops short (the ball could touch something that moves), or after the chunk at which the
+    deadline is within half a step, the ball lies at least ``rule_depth`` past the opening's
+    plane, :func:`near_check` finds it outside the box, at rest or out of reach, or it is clear
+    of everything (it may fly in closed form again). Returns (OK or DIVERGED, the time reached)."""
+    dt, t, row = settings.dt, time, watch.row
+    while True:
+        n = _next_chunk(watch, t, dt)
+        if n == 0:
+            return OK, t
+        status, taken = advance_alone(x, v, inv_mass, entered, model, settings, n, row, stats)
+        if status != OK:
+            return DIVERGED, t
+        t += taken * dt
+        if taken == 0:
+            return OK, t
+        decidable, _ = _decidable(x, v, inv_mass, model, watch, t, dt)
+        if decidable or taken < n or clearance(x, model.n_net, row, model.ball_radius, model.segments,
+                                                model.poles) > watch.clearance:
+            return OK, t

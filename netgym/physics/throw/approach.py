@@ -17,27 +17,11 @@ import math
 import numpy as np
 
 from netgym.physics.kernels import air
-from netgym.physics.kernels.contacts import COINCIDENT
 from netgym.physics.throw.flight import ground_time, sliding
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_depth
 from netgym.physics.kernels.stepping import net_box, update_entered
-
-
-@kernel
-def speed(v):
-    """Length of the velocity ``v`` (3,), summed in coordinate order (as every piece of flight
-    measures it, whatever the machine's BLAS)."""
-    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-
-
-@kernel
-def travel_time(speed, acceleration, gap):
-    """A time within which a body at ``speed``, accelerated by at most ``acceleration``, cannot
-    travel ``gap``."""
-    if acceleration == 0.0:
-        return gap / speed
-    return (-speed + math.sqrt(speed * speed + 4.0 * acceleration * gap)) / (2.0 * acceleration)
+from netgym.physics.kernels.surroundings import air_safe_time, clearance, clearance_at_least, speed, travel_time
 
 
 @kernel
@@ -100,16 +84,6 @@ def approach(x, v, entered, model, ground, watch, box, time):
 
 
 @kernel
-def air_safe_time(speed, gap, gravity, k, wind, piece):
-    """A time within which a ball at ``speed`` through air (drag constant ``k``, ``wind``)
-    cannot travel ``gap``, at most ``piece``: its acceleration bounded over ``piece`` with the
-    speed it could gain meanwhile (:func:`~netgym.physics.kernels.air.max_acceleration`)."""
-    g0 = air.max_acceleration(speed, gravity, k, wind)
-    g = air.max_acceleration(speed + g0 * piece, gravity, k, wind)
-    return min(travel_time(speed, g, gap), piece)
-
-
-@kernel
 def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
     """:func:`approach` through air: fly the ball of ``watch.row`` from ``time`` piece after
     piece (:func:`~netgym.physics.kernels.air.fly`, bounces and sliding included) while each certainly
@@ -155,55 +129,3 @@ def approach_through_air(x, v, entered, model, ground, watch, box, time, piece):
             u[c] = end_v[c]
         _move_ball(x, before, n_net, entered, opening, p, end_p)
         t = t + tau
-
-
-@kernel
-def clearance(x, n_net, row, radius, segments, poles):
-    """How far the ball in ``row`` can move before it could touch a net particle or structural
-    spring segment, a pole or another ball, all held still (exact distances). Negative when it
-    already touches."""
-    cx, cy, cz = x[row, 0], x[row, 1], x[row, 2]
-    nearest = math.inf
-    for k in range(n_net):
-        nearest = min(nearest, (x[k, 0] - cx) ** 2 + (x[k, 1] - cy) ** 2 + (x[k, 2] - cz) ** 2)
-    for s in range(segments.shape[0]):
-        i = segments[s, 0]
-        j = segments[s, 1]
-        ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
-        len2 = ex * ex + ey * ey + ez * ez
-        if len2 < COINCIDENT:
-            continue
-        t = ((cx - x[i, 0]) * ex + (cy - x[i, 1]) * ey + (cz - x[i, 2]) * ez) / len2
-        t = min(max(t, 0.0), 1.0)
-        nearest = min(nearest, (x[i, 0] + t * ex - cx) ** 2 + (x[i, 1] + t * ey - cy) ** 2
-                      + (x[i, 2] + t * ez - cz) ** 2)
-    return _others_gap(x, n_net, row, radius, poles, math.sqrt(nearest) - radius)
-
-
-@kernel
-def clearance_at_least(x, n_net, row, radius, box, poles):
-    """A lower bound on :func:`clearance`, cheaper: the net's part measured to its bounding
-    ``box`` (6,: min x, y, z, max x, y, z), which holds every particle and spring segment."""
-    nearest = 0.0
-    for c in range(3):
-        outside = max(box[c] - x[row, c], 0.0, x[row, c] - box[c + 3])
-        nearest += outside * outside
-    return _others_gap(x, n_net, row, radius, poles, math.sqrt(nearest) - radius)
-
-
-@inline_kernel
-def _others_gap(x, n_net, row, radius, poles, gap):
-    """``gap``, or less: how far the ball in ``row`` is from the poles and the other balls."""
-    cx, cy, cz = x[row, 0], x[row, 1], x[row, 2]
-    for p in range(poles.radius.shape[0]):
-        ax, ay, az = poles.start[p, 0], poles.start[p, 1], poles.start[p, 2]
-        ex, ey, ez = poles.end[p, 0] - ax, poles.end[p, 1] - ay, poles.end[p, 2] - az
-        t = ((cx - ax) * ex + (cy - ay) * ey + (cz - az) * ez) / (ex * ex + ey * ey + ez * ez)
-        t = min(max(t, 0.0), 1.0)
-        d = math.sqrt((cx - ax - t * ex) ** 2 + (cy - ay - t * ey) ** 2 + (cz - az - t * ez) ** 2)
-        gap = min(gap, d - radius - poles.radius[p])
-    for b in range(n_net, x.shape[0]):
-        if b != row:
-            d = math.sqrt((x[b, 0] - cx) ** 2 + (x[b, 1] - cy) ** 2 + (x[b, 2] - cz) ** 2)
-            gap = min(gap, d - 2.0 * radius)
-    return gap

@@ -6,6 +6,7 @@ import numpy as np
 
 from netgym.physics.throw import approach
 
+from netgym.physics.kernels import surroundings
 from netgym.physics.kernels.surroundings import survey
 from netgym.physics.throw.records import TUNING, ThrowContext
 
@@ -14,7 +15,7 @@ def clearance(throw: ThrowContext) -> float:
     """Distance the ball can travel before it could touch the net, a pole or another ball (the
     net held still)."""
     m = throw.sim.model
-    return approach.clearance(throw.sim.state.x, m.n_net, throw.ball.row, m.ball_radius, m.segments, m.poles)
+    return surroundings.clearance(throw.sim.state.x, m.n_net, throw.ball.row, m.ball_radius, m.segments, m.poles)
 
 
 def on_step_grid(throw: ThrowContext, tau: float) -> float:
@@ -35,6 +36,16 @@ def flight_time(throw: ThrowContext) -> float:
     s = throw.sim.state
     safe = throw.free_flight.safe_time(s.v[throw.ball.row], gap, TUNING.air_piece)
     return on_step_grid(throw, min(safe, throw.course.deadline - s.time))
+
+
+def can_roll_alone(throw: ThrowContext) -> bool:
+    """Whether the ball may be stepped alone for a step, everything else asleep: it can touch
+    nothing that moves meanwhile, only poles, pinned particles and the ground, which the rest's
+    sleep does not change (:func:`~netgym.physics.kernels.surroundings.alone_for_a_step`)."""
+    sim, course = throw.sim, throw.course
+    s, dt = sim.state, sim.config.simulation.dt
+    return (round((course.deadline - s.time) / dt) > 0
+            and surroundings.alone_for_a_step(s.x, s.v, s.inv_mass, throw.lone, throw.ball.row, dt))
 
 
 def surveyed_box(throw: ThrowContext, margin: float) -> tuple[float, np.ndarray, np.ndarray]:

@@ -20,7 +20,7 @@ import numpy as np
 
 from netgym.physics.kernels import stepping
 from netgym.physics.outcomes import Reason
-from netgym.physics.throw.clearance import flight_time
+from netgym.physics.throw.clearance import can_roll_alone, flight_time
 from netgym.physics.throw.records import TUNING, ThrowContext
 from netgym.physics.kernels.watch import near_check
 
@@ -45,7 +45,7 @@ def after_flight(throw: ThrowContext) -> Reason | None:
 class Verdict(NamedTuple):
     """What :func:`after_piece` finds: the ``reason`` the throw is decided, or None; and
     whether, undecided, the scene may go to sleep (``quiet``: nothing but the ball moves any
-    more and it could fly clear for a step)."""
+    more and it could fly clear for a step, or move alone for a chunk, near nothing that moves)."""
 
     reason: Reason | None
     quiet: bool = False
@@ -69,7 +69,8 @@ def after_piece(throw: ThrowContext) -> Verdict:
     others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs.pairs, km.springs.params,
                                                  km.opening, km.poles, watch)
     reason = after_check(throw, at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
-    return Verdict(reason, reason is None and others < watch.sleep_speed and flight_time(throw) > 0.0)
+    return Verdict(reason, reason is None and others < watch.sleep_speed
+                   and (flight_time(throw) > 0.0 or can_roll_alone(throw)))
 
 
 def after_check(throw: ThrowContext, at_rest: bool, unreachable: bool, lo: np.ndarray,

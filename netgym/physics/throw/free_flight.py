@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from netgym.physics.kernels import air
+from netgym.physics.kernels import air, surroundings
 
-from netgym.physics.throw import approach, flight
+from netgym.physics.throw import flight
 from netgym.physics.model.model import Model
 from netgym.physics.model.opening import Opening
 
@@ -70,10 +70,10 @@ class FreeFlight:
     def safe_time(self, v: np.ndarray, gap: float, air_piece: float) -> float:
         """A time within which a ball at velocity ``v`` cannot travel ``gap`` (through air, at
         most ``air_piece``)."""
-        speed = approach.speed(v)
+        speed = surroundings.speed(v)
         if self.parabola:
-            return approach.travel_time(speed, abs(self.ground.gravity), gap)
-        return approach.air_safe_time(speed, gap, self.ground.gravity, self.drag, self.wind, air_piece)
+            return surroundings.travel_time(speed, abs(self.ground.gravity), gap)
+        return surroundings.air_safe_time(speed, gap, self.ground.gravity, self.drag, self.wind, air_piece)
 
     def landing_time(self, p: np.ndarray, v: np.ndarray) -> float:
         """Time until the ball's lowest point first reaches the ground (its parabola)."""

@@ -27,10 +27,11 @@ from netgym.physics.pause import pause_plan
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, Watched
 from netgym.physics.throw import decisions
 from netgym.physics.throw.clear_flight import fly_clear
-from netgym.physics.throw.clearance import clearance
+from netgym.physics.throw.clearance import can_roll_alone, clearance
 from netgym.physics.throw.filming import film_after
 from netgym.physics.throw.free_flight import FreeFlight
 from netgym.physics.throw.records import TUNING, Ball, Course, ThrowContext, ThrowResult
+from netgym.physics.kernels.surroundings import LoneBall
 from netgym.physics.kernels.watch import RestWindow, Watch
 
 if TYPE_CHECKING:
@@ -56,7 +57,8 @@ class Throw:
                  film: Film | None = None) -> None:
         self.position = vector_argument(position, "position")  # fail on bad input before any work
         self.velocity = vector_argument(velocity, "velocity")
-        self.context = ThrowContext(sim, fast, sim.capture_rule, film, FreeFlight.of(sim.model))
+        self.context = ThrowContext(sim, fast, sim.capture_rule, film, FreeFlight.of(sim.model),
+                                    LoneBall.of(sim.kernel_model))
 
     def plan(self) -> Plan:
         """The throw as a plan; it returns the :class:`ThrowResult`. Its phases:
@@ -127,20 +129,31 @@ class Throw:
         """Simulate the ball until its outcome is decided; returns the :class:`Reason`.
 
         While the scene sleeps (the fast path), the ball flies in closed form, and the flight
-        itself may decide the throw. Once it comes near something, the scene wakes and is
-        integrated chunk by chunk, with a decision after each; when nothing but the ball moves
-        any more and it is clear of everything, the scene sleeps again and the ball flies on.
+        itself may decide the throw. Once it comes near something, it is stepped alone while it
+        can touch nothing that moves (poles, pinned particles, the ground only: the scene sleeps
+        on), else the scene wakes and is integrated chunk by chunk, with a decision after each;
+        when nothing but the ball moves any more and it could fly clear or move alone, the scene
+        sleeps again. The ball alone flies again only once it is clear of everything, where the
+        compiled loop of its chunks hands back (:func:`~netgym.physics.kernels.watch.roll_watched`).
         """
         throw = self.context
         sim = throw.sim
+        alone = False  # the ball is near only what cannot move, the scene asleep: step it alone next
         while True:
+            rolled = near_fixed = False
             if throw.fast and not sim.awake:
-                reason = yield from fly_clear(throw)
-                if reason is not None:
-                    return reason
-                sim.wake()
-                if clearance(throw) < 0.0:
-                    continue  # launched overlapping something: let the contacts act before deciding
+                if alone:
+                    yield from self._roll_alone()
+                    rolled = True
+                else:
+                    reason = yield from fly_clear(throw)
+                    if reason is not None:
+                        return reason
+                    near_fixed = can_roll_alone(throw)
+                    if not near_fixed:
+                        sim.wake()
+                        if clearance(throw) < 0.0:
+                            continue  # launched overlapping something: let the contacts act before deciding
             else:
                 yield from self._integrate_near()
             verdict = decisions.after_piece(throw)
@@ -148,6 +161,7 @@ class Throw:
                 return verdict.reason
             if verdict.quiet:
                 sim.sleep(keep=throw.ball.row)
+            alone = near_fixed or (rolled and clearance(throw) <= TUNING.clearance and can_roll_alone(throw))
 
     def _integrate_near(self) -> Plan:
         """Integrate everything for one chunk of CHUNK_SECONDS (less before the time limit; none
@@ -166,6 +180,21 @@ class Throw:
                 yield Watched(sim.integrator, dt, watch)
             else:
                 yield Integrate(min(watch.chunk, left), sim.integrator, dt)
+
+    def _roll_alone(self) -> Plan:
+        """Step the ball alone for one chunk, everything else asleep (unfilmed, chunk after chunk
+        in one request, while nothing could be decided and it stays near nothing that moves:
+        :func:`~netgym.physics.kernels.watch.roll_watched`): it touches only poles, pinned
+        particles and the ground, on the steps the full simulation takes, with its arithmetic,
+        while the net's residual motion (below ``sleep_speed``) is left out as in a flight."""
+        throw = self.context
+        sim, watch = throw.sim, throw.course.watch
+        dt = sim.config.simulation.dt
+        if throw.film is None:
+            yield Watched(sim.integrator, dt, watch, alone=True)
+        else:
+            left = round((throw.course.deadline - sim.state.time) / dt)
+            yield Integrate(min(watch.chunk, left), sim.integrator, dt, alone=throw.ball.row)
 
     def _result(self, reason: Reason) -> ThrowResult:
         """The :class:`ThrowResult` of a throw decided now for ``reason``."""

@@ -10,6 +10,7 @@ import numpy as np
 from netgym.physics.film import Film
 from netgym.physics.outcomes import CaptureRule, Reason
 from netgym.physics.throw.free_flight import FreeFlight
+from netgym.physics.kernels.surroundings import LoneBall
 from netgym.physics.kernels.watch import Watch
 
 if TYPE_CHECKING:
@@ -91,12 +92,14 @@ class Course:
 class ThrowContext:
     """One throw under way: the simulator ``sim`` it is thrown into, whether it takes the
     ``fast`` path, the scene's capture ``rule``, the ``film`` it is filmed with (or None), the
-    ball's ``free_flight``, the thrown ``ball`` and its ``course`` (from the launch on)."""
+    ball's ``free_flight`` and its ``lone`` record (what a check of the ball alone reads), the
+    thrown ``ball`` and its ``course`` (from the launch on)."""
 
     sim: "Simulator"
     fast: bool
     rule: CaptureRule
     film: Film | None
     free_flight: FreeFlight
+    lone: LoneBall
     ball: Ball = Ball(-1, -1)
     course: Course | None = None
