@@ -9,7 +9,8 @@ import numpy as np
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 from netgym.physics.kernels.air import rk4_step
-from netgym.physics.kernels.contacts import Bodies, resolve_ball_contacts, resolve_body_ground, resolve_ground, resolve_lone_ball
+from netgym.physics.kernels.contacts import (Bodies, resolve_ball_contacts, resolve_body_ground, resolve_ground,
+                                             resolve_lone_ball)
 from netgym.physics.kernels.forces import kinetic_energy
 from netgym.physics.kernels.integrators import START_SLOT, smooth_step
 from netgym.physics.kernels.rows import copy_row, copy_rows

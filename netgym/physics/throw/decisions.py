@@ -45,7 +45,7 @@ def after_flight(throw: ThrowContext) -> Reason | None:
 class Verdict(NamedTuple):
     """What :func:`after_piece` finds: the ``reason`` the throw is decided, or None; and
     whether, undecided, the scene may go to sleep (``quiet``: nothing but the ball moves any
-    more and it could fly clear for a step, or move alone for a chunk, near nothing that moves)."""
+    more and it could fly clear for a step, or move alone for one, near nothing that moves)."""
 
     reason: Reason | None
     quiet: bool = False
