@@ -19,9 +19,10 @@ from typing import Any, Mapping
 
 from netgym.arguments import is_integer, is_real
 from netgym.errors import ConfigError
-from netgym.kinds import Integrator
+from netgym.kinds import ContactModel, Integrator
 
 INTEGRATORS = Integrator.labels()
+CONTACT_MODELS = ContactModel.labels()
 FACES = ("+x", "-x", "+y", "-y", "+z", "-z")
 BUILTIN_SCENES = ("basket", "goal")
 CAPTURE_RULES = ("held", "line")
@@ -126,6 +127,12 @@ class SimulationConfig:
     net's inertia is ``settle_inertia`` times its mass, its weight unchanged (dynamic relaxation
     with a fictitious mass: the same equilibrium, frequencies sqrt(settle_inertia) lower, so the
     stability limit, and with it the pause's step, that much longer).
+
+    ``contact_model``: ``"impulse"`` (the default: contacts resolved by projections and impulses
+    after each substep) or ``"compliant"`` (Hunt-Crossley forces of stiffness
+    ``contact_stiffness`` (N/m) inside the integrator, which converge at its order through
+    contact; :mod:`netgym.physics.compliant`). The compliant model steps the scene
+    (``Simulator.step``) with every integrator but implicit Euler; throws do not take it yet.
     """
 
     integrator: str = _choice(*INTEGRATORS)
@@ -141,6 +148,8 @@ class SimulationConfig:
     settle_integrator: str = _choice(*INTEGRATORS)
     settle_dt: float = _num(0.0, 0.05, lo_open=True)
     settle_inertia: float = _num(1.0, 100.0, default=1.0)
+    contact_model: str = _choice(*CONTACT_MODELS, default="impulse")
+    contact_stiffness: float = _num(1.0, 1e8, default=2e4)
 
 
 @dataclass(frozen=True)
@@ -298,6 +307,10 @@ def _check_consistency(cfg: SceneConfig) -> None:
         lo, hi = getattr(cfg.throw, key)
         if lo > hi:
             raise ConfigError(f"throw.{key} = [{lo}, {hi}] must be an increasing [min, max] pair")
+    sim = cfg.simulation
+    if sim.contact_model == "compliant" and "implicit_euler" in (sim.integrator, sim.settle_integrator):
+        raise ConfigError("simulation.contact_model = 'compliant' has no step for implicit_euler: choose another "
+                          "simulation.integrator and simulation.settle_integrator")
     _check_cost(cfg)
 
 

@@ -1,4 +1,4 @@
-"""The codes the kernels switch on: integrators and kinds of contact, one enum each.
+"""The codes the kernels switch on: integrators, contact models and kinds of contact, one enum each.
 
 Each member's ``label`` (its name in lower case) is the name a scene file uses:
 ``simulation.integrator = "imex_euler"``, ``[contact.ball_net]``. Numba kernels take the
@@ -40,6 +40,15 @@ class Integrator(_Labelled):
     RK4 = 2
     IMPLICIT_EULER = 3
     IMEX_EULER = 4
+
+
+class ContactModel(_Labelled):
+    """How contacts act: ``impulse``, projections and impulses after each substep (the
+    default, :mod:`netgym.physics.kernels.contacts`), or ``compliant``, Hunt-Crossley forces inside
+    the integrator (:mod:`netgym.physics.compliant`)."""
+
+    IMPULSE = 0
+    COMPLIANT = 1
 
 
 class Contact(_Labelled):

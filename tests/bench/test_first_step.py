@@ -20,7 +20,7 @@ from netgym.errors import InvalidArgumentError
 from netgym.physics.kernels import stepping
 from netgym.physics.compile_notice import MESSAGE, SHOWN, CompileNotice
 from netgym.physics.kernels.integrators import Scratch
-from netgym.kinds import Integrator
+from netgym.kinds import ContactModel, Integrator
 from netgym.physics.model.model import Settings
 from netgym.physics.simulator import Simulator
 
@@ -58,7 +58,10 @@ def test_settings_are_of_their_integrators_class() -> None:
     settings = Settings.of(config, Integrator.RK4, 1e-3)
     assert type(settings).INTEGRATOR == Integrator.RK4
     assert settings == (Integrator.RK4, 1e-3, config.max_ball_travel, config.cg_tolerance, config.cg_max_iterations,
-                        config.divergence_speed)
+                        config.divergence_speed, config.contact_stiffness)
+    assert type(settings).CONTACT_MODEL == ContactModel.IMPULSE
+    compliant = Settings.make(Integrator.RK4, 1e-3, 0.25, 1e-8, 100, 1e3, ContactModel.COMPLIANT, 2e4)
+    assert type(compliant).__name__ == "Rk4CompliantSettings" and type(compliant).CONTACT_MODEL == ContactModel.COMPLIANT
 
 
 @pytest.mark.slow

@@ -6,6 +6,10 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from numba.extending import overload
+
+from netgym.kinds import ContactModel
+from netgym.physics.compliant.step import compliant_step, new_work
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 from netgym.physics.kernels.air import rk4_step
@@ -136,8 +140,54 @@ def _step_buffers(x, n_net):
     return np.empty((x.shape[0] - n_net, 3)), np.empty(6), np.empty(n_net), np.empty(n_net, dtype=np.int64)
 
 
+def substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
+    """The motion and contacts of one substep of ``h`` of :func:`_step`, by the contact model of
+    ``settings``: the smooth forces, the balls' free flight and then the contacts' projections
+    and impulses, or :func:`~netgym.physics.compliant.step.compliant_step` (``work``: its
+    scratch, from :func:`contact_work`). For numba kernels only: the model is chosen when the
+    calling kernel compiles."""
+    raise TypeError("substep runs inside numba kernels only")
+
+
+@overload(substep, jit_options={"error_model": "numpy"})
+def _substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
+    """The implementation of :func:`substep` for the contact model of ``settings``' type."""
+    if getattr(settings.instance_class, "CONTACT_MODEL", ContactModel.IMPULSE) == ContactModel.COMPLIANT:
+        def step(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
+            compliant_step(settings, bodies.x, bodies.v, bodies.inv_mass, model, net_gravity, h, scratch, work)
+        return step
+
+    def impulse_step(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
+        x, v, inv_mass = bodies.x, bodies.v, bodies.inv_mass
+        before_v, box, _, near = buffers
+        n_net = model.n_net
+        before = bodies.start[n_net:]
+        smooth_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, stats)
+        if entered is not None:
+            if x.shape[0] > n_net:
+                _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
+                net_box(x, n_net, box)
+            resolve_ball_contacts(bodies, model, box, near)
+        resolve_ground(bodies, model)
+    return impulse_step
+
+
+def contact_work(settings, x, model):
+    """The scratch :func:`substep` needs besides the integrators': None for impulses,
+    :func:`~netgym.physics.compliant.step.new_work`'s for the compliant model. For numba kernels only."""
+    raise TypeError("contact_work runs inside numba kernels only")
+
+
+@overload(contact_work, jit_options={"error_model": "numpy"})
+def _contact_work(settings, x, model):
+    """The implementation of :func:`contact_work` for the contact model of ``settings``' type."""
+    if getattr(settings.instance_class, "CONTACT_MODEL", ContactModel.IMPULSE) == ContactModel.COMPLIANT:
+        return lambda settings, x, model: new_work(x, model)
+    return lambda settings, x, model: None
+
+
 @kernel
-def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity):
+def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity, work):
     """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast: the
     passes of a substep in order, each handed the :class:`~netgym.physics.model.model.KernelModel`
     or the parts of it it needs; ``buffers`` from :func:`_step_buffers`; ``net_gravity``: the
@@ -159,13 +209,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net
         for b in range(n_balls):
             for c in range(3):
                 before_v[b, c] = v[n_net + b, c]
-        smooth_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, stats)
-        if entered is not None:
-            if n_balls > 0:
-                _free_ball_flight(x, v, before, before_v, n_net, model.gravity, h, model.ball_drag, model.wind)
-                net_box(x, n_net, box)
-            resolve_ball_contacts(bodies, model, box, near)
-        resolve_ground(bodies, model)
+        substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work)
         if entered is not None:
             update_entered(x, before, n_net, entered, model.opening)
         stats[0].substeps += 1
@@ -190,10 +234,11 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     its copy).
     """
     buffers = _step_buffers(x, model.n_net)
+    work = contact_work(settings, x, model)
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, model.gravity)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, model.gravity, work)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
@@ -310,13 +355,14 @@ def _relax_steps(x, v, inv_mass, entered, model, settings, n_steps, scratch, sta
     history, memory = rest.history, rest.memory[0]
     window = history.shape[0]
     buffers = _step_buffers(x, model.n_net)
+    work = contact_work(settings, x, model)
     net_gravity = model.gravity / rest.inertia
     memory.steps = 0
     memory.at_rest = False
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity)
+        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity, work)
         memory.steps = i + 1
         if rest.damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])

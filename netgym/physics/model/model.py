@@ -16,7 +16,7 @@ import numpy as np
 
 from netgym.config import SceneConfig, SimulationConfig
 from netgym.physics.model.contact_tables import Materials, Poles
-from netgym.kinds import Contact, Integrator, SpringKind
+from netgym.kinds import Contact, ContactModel, Integrator, SpringKind
 from netgym.physics.model.net import NetGeometry, build_net
 from netgym.physics.model.opening import Opening, OpeningRecord
 from netgym.physics.model.springs import SpringLayout, Springs, kernel_indices
@@ -70,32 +70,41 @@ class Settings(NamedTuple):
     cg_tolerance: float
     cg_max_iterations: int
     divergence_speed: float
+    contact_stiffness: float = 0.0
 
     @staticmethod
     def make(integrator: int, dt: float, max_travel: float, cg_tolerance: float, cg_max_iterations: int,
-             divergence_speed: float) -> "Settings":
-        """Settings of ``integrator`` (an :class:`Integrator` code), of its class in :data:`SETTINGS_CLASSES`."""
-        return SETTINGS_CLASSES[Integrator(integrator)](int(integrator), float(dt), float(max_travel),
-                                                        float(cg_tolerance), int(cg_max_iterations),
-                                                        float(divergence_speed))
+             divergence_speed: float, contact_model: int = ContactModel.IMPULSE,
+             contact_stiffness: float = 0.0) -> "Settings":
+        """Settings of ``integrator`` (an :class:`Integrator` code) and ``contact_model`` (a
+        :class:`ContactModel` code, its springs of ``contact_stiffness`` N/m), of their class in
+        :data:`SETTINGS_CLASSES`."""
+        kind = SETTINGS_CLASSES[Integrator(integrator), ContactModel(contact_model)]
+        return kind(int(integrator), float(dt), float(max_travel), float(cg_tolerance), int(cg_max_iterations),
+                    float(divergence_speed), float(contact_stiffness))
 
     @classmethod
     def of(cls, config: SimulationConfig, integrator: int, dt: float) -> "Settings":
         """The settings of a scene's simulation section with this integrator and ``dt``."""
         return cls.make(integrator, dt, config.max_ball_travel, config.cg_tolerance, config.cg_max_iterations,
-                        config.divergence_speed)
+                        config.divergence_speed, ContactModel.parse(config.contact_model), config.contact_stiffness)
 
 
-def _settings_class(integrator: Integrator) -> type[Settings]:
-    """The subclass of :class:`Settings` of one integrator, named after it (``ImexEulerSettings``),
-    with the integrator as its ``INTEGRATOR``."""
-    name = "".join(word.title() for word in integrator.label.split("_")) + "Settings"
+def _settings_class(integrator: Integrator, contact_model: ContactModel) -> type[Settings]:
+    """The subclass of :class:`Settings` of one integrator and contact model, named after them
+    (``ImexEulerSettings``, ``Rk4CompliantSettings``), with them as its ``INTEGRATOR`` and
+    ``CONTACT_MODEL``."""
+    model = "" if contact_model == ContactModel.IMPULSE else contact_model.label.title()
+    name = "".join(word.title() for word in integrator.label.split("_")) + model + "Settings"
     return type(name, (Settings,), {"__slots__": (), "__module__": __name__, "__qualname__": name,
-                                    "__doc__": f":class:`Settings` of {integrator.label}.", "INTEGRATOR": integrator})
+                                    "__doc__": f":class:`Settings` of {integrator.label}, {contact_model.label} contacts.",
+                                    "INTEGRATOR": integrator, "CONTACT_MODEL": contact_model})
 
 
-SETTINGS_CLASSES: dict[Integrator, type[Settings]] = {integrator: _settings_class(integrator) for integrator in Integrator}
-"""Each integrator's class of :class:`Settings`."""
+SETTINGS_CLASSES: dict[tuple[Integrator, ContactModel], type[Settings]] = {
+    (integrator, contact_model): _settings_class(integrator, contact_model)
+    for integrator in Integrator for contact_model in ContactModel}
+"""Each integrator and contact model's class of :class:`Settings`."""
 globals().update({cls.__name__: cls for cls in SETTINGS_CLASSES.values()})  # numba's cache pickles them by name
 
 

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from netgym.arguments import vector_argument
-from netgym.errors import SimulationDivergedError
+from netgym.errors import ConfigError, SimulationDivergedError
 from netgym.physics.kernels import air, reach
 from netgym.physics.film import Film
 from netgym.physics.outcomes import Reason
@@ -57,6 +57,10 @@ class Throw:
                  film: Film | None = None) -> None:
         self.position = vector_argument(position, "position")  # fail on bad input before any work
         self.velocity = vector_argument(velocity, "velocity")
+        if fast and sim.config.simulation.contact_model != "impulse":
+            raise ConfigError(f"simulation.contact_model = {sim.config.simulation.contact_model!r} takes throws with "
+                              f"fast=False only: the fast path's closed-form bounces, lone-ball steps and energy "
+                              f"bound are the impulse model's")
         self.context = ThrowContext(sim, fast, sim.capture_rule, film, FreeFlight.of(sim.model),
                                     LoneBall.of(sim.kernel_model))
 

@@ -1,0 +1,11 @@
+"""The compliant contact model (``simulation.contact_model = "compliant"``): contacts as forces
+inside the integrator, not impulses after it.
+
+Every contact is a Hunt-Crossley spring-damper along its normal, ``k w delta max(0, 1 + d
+delta')`` (:mod:`~netgym.physics.compliant.law`), with Coulomb friction regularised below a slip
+speed; the balls meet the net's particles and, with a weight that vanishes at their ends, the
+interiors of its structural segments (:mod:`~netgym.physics.compliant.contacts`). The forces
+are Lipschitz in the state and smooth between events (a contact's onset, its separation, its
+damper's clamp), which RK4 locates inside its steps, so that it converges at its order through
+contact (:mod:`~netgym.physics.compliant.step`).
+"""

@@ -1,0 +1,289 @@
+"""The compliant model's contacts: the list of those that may act within a step, their forces
+in a mode, their modes and event values, and the energy their springs hold.
+
+A contact is a body ``a`` (a ball, or a net particle on the ground) against a point ``p`` on
+the other side: a net particle, a ball, the interior of a structural segment (``p`` its closest
+point, at parameter ``s``, weighted by :func:`~netgym.physics.compliant.law.segment_weight`), a
+pole's axis or the ground. Its overlap is ``delta = reach - |x_a - p|``, its closing rate
+``delta'`` (exact: the segment's closest point moves along the segment, across the normal).
+
+A contact's mode is OFF (no overlap), ON (overlap, the damper pushing or idle) or CLAMPED
+(overlap, the damper would pull: no normal force). Within a step of RK4 the modes of its start
+are frozen and ON contacts take the law's smooth continuation
+(:func:`~netgym.physics.compliant.law.free_normal_force`); the step is cut where a mode changes.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from netgym.physics.compliant import law
+from netgym.physics.kernels.jit import inline_kernel, kernel
+
+PARTICLE, SEGMENT, POLE, BALL, GROUND, NET_GROUND = 0, 1, 2, 3, 4, 5
+OFF, ON, CLAMPED = 0, 1, 2
+LIVE = -1   # no frozen mode: the force of the mode the state is in
+
+
+class ContactList(NamedTuple):
+    """Contacts that may act within a step: ``kind`` (one of PARTICLE .. NET_GROUND), body ``a``,
+    the other side ``b`` (a particle or ball row, a segment or pole index, -1 for the ground),
+    their frozen ``mode`` and ``count`` (1,), the contacts in use."""
+
+    kind: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    mode: np.ndarray
+    count: np.ndarray
+
+
+@kernel
+def new_list(x, model):
+    """An empty :class:`ContactList` with room for every contact of a state like ``x``."""
+    n_balls = x.shape[0] - model.n_net
+    size = n_balls * (model.n_net + model.segments.shape[0] + model.poles.radius.shape[0] + n_balls + 1) + model.n_net
+    return ContactList(np.empty(size, dtype=np.int64), np.empty(size, dtype=np.int64),
+                       np.empty(size, dtype=np.int64), np.zeros(size, dtype=np.int8), np.zeros(1, dtype=np.int64))
+
+
+class Feature(NamedTuple):
+    """Where a contact touches: overlap ``delta``, unit normal (nx, ny, nz) towards ``a``, the
+    other side's bodies ``i``, ``j`` (-1: none, static) with weights ``wi``, ``wj`` of the point,
+    the penalty's ``weight`` and its derivative ``slope`` along the segment's parameter ``s``,
+    the segment's axis (ex, ey, ez) and its squared length ``l2`` (1 elsewhere)."""
+
+    delta: float
+    nx: float
+    ny: float
+    nz: float
+    i: int
+    wi: float
+    j: int
+    wj: float
+    weight: float
+    slope: float
+    s: float
+    ex: float
+    ey: float
+    ez: float
+    l2: float
+
+
+@inline_kernel
+def _towards(dx, dy, dz, reach, i, wi, j, wj, weight, slope, s, ex, ey, ez, l2):
+    """The :class:`Feature` of ``a`` at (dx, dy, dz) from the point, ``reach`` (m) apart at touch."""
+    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+    inv = 1.0 / dist if dist > 1e-12 else 0.0
+    return Feature(reach - dist, dx * inv, dy * inv, dz * inv if dist > 1e-12 else 1.0, i, wi, j, wj, weight, slope,
+                   s, ex, ey, ez, l2)
+
+
+@kernel
+def feature(x, model, kind, a, b):
+    """The :class:`Feature` of the contact (``kind``, ``a``, ``b``) in the positions ``x``."""
+    radius = model.ball_radius
+    xa, ya, za = x[a, 0], x[a, 1], x[a, 2]
+    if kind == GROUND or kind == NET_GROUND:
+        reach = radius if kind == GROUND else 0.0
+        return Feature(reach - za, 0.0, 0.0, 1.0, -1, 0.0, -1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+    if kind == PARTICLE or kind == BALL:
+        reach = radius if kind == PARTICLE else 2.0 * radius
+        return _towards(xa - x[b, 0], ya - x[b, 1], za - x[b, 2], reach, b, 1.0, -1, 0.0, 1.0, 0.0, 0.0,
+                        0.0, 0.0, 0.0, 1.0)
+    if kind == POLE:
+        poles = model.poles
+        px, py, pz = poles.start[b, 0], poles.start[b, 1], poles.start[b, 2]
+        ex, ey, ez = poles.end[b, 0] - px, poles.end[b, 1] - py, poles.end[b, 2] - pz
+        t = min(max(((xa - px) * ex + (ya - py) * ey + (za - pz) * ez) / (ex * ex + ey * ey + ez * ez), 0.0), 1.0)
+        return _towards(xa - px - t * ex, ya - py - t * ey, za - pz - t * ez, radius + poles.radius[b], -1, 0.0, -1,
+                        0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+    i, j = np.int64(model.segments[b, 0]), np.int64(model.segments[b, 1])
+    ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
+    l2 = ex * ex + ey * ey + ez * ez
+    s = ((xa - x[i, 0]) * ex + (ya - x[i, 1]) * ey + (za - x[i, 2]) * ez) / l2
+    weight, slope = law.segment_weight(s)
+    return _towards(xa - x[i, 0] - s * ex, ya - x[i, 1] - s * ey, za - x[i, 2] - s * ez, radius, i, 1.0 - s, j, s,
+                    weight, slope, s, ex, ey, ez, l2)
+
+
+@inline_kernel
+def relative_velocity(v, a, f):
+    """The velocity of ``a`` relative to the point of :class:`Feature` ``f``."""
+    ux, uy, uz = v[a, 0], v[a, 1], v[a, 2]
+    if f.i >= 0:
+        ux -= f.wi * v[f.i, 0]
+        uy -= f.wi * v[f.i, 1]
+        uz -= f.wi * v[f.i, 2]
+    if f.j >= 0:
+        ux -= f.wj * v[f.j, 0]
+        uy -= f.wj * v[f.j, 1]
+        uz -= f.wj * v[f.j, 2]
+    return ux, uy, uz
+
+
+@kernel
+def material(model, kind):
+    """(restitution, friction) of a contact kind."""
+    m = model.materials
+    if kind == PARTICLE or kind == SEGMENT:
+        return m.ball_net.restitution, m.ball_net.friction
+    if kind == POLE:
+        return m.ball_pole.restitution, m.ball_pole.friction
+    if kind == BALL:
+        return m.ball_ball.restitution, m.ball_ball.friction
+    if kind == GROUND:
+        return m.ball_ground.restitution, m.ball_ground.friction
+    return m.net_ground.restitution, m.net_ground.friction
+
+
+@kernel
+def dampings(model):
+    """The damping ``d`` (s/m) of every contact kind, from its restitution (an array by kind)."""
+    out = np.empty(6)
+    for kind in range(6):
+        out[kind] = law.dissipation(material(model, kind)[0], law.REFERENCE_SPEED)
+    return out
+
+
+@inline_kernel
+def _push(f, k, fx, fy, fz, scale):
+    """Add ``scale * (fx, fy, fz)`` to row ``k`` of ``f`` if ``k`` is a body."""
+    if k >= 0:
+        f[k, 0] += scale * fx
+        f[k, 1] += scale * fy
+        f[k, 2] += scale * fz
+
+
+@inline_kernel
+def _spread(f, a, ft, fx, fy, fz):
+    """Add (fx, fy, fz) to ``a`` and its reaction to the point's bodies, by their weights."""
+    _push(f, a, fx, fy, fz, 1.0)
+    _push(f, ft.i, fx, fy, fz, -ft.wi)
+    _push(f, ft.j, fx, fy, fz, -ft.wj)
+
+
+@inline_kernel
+def mode_of(delta, rate, damping):
+    """The mode a contact is in: OFF without overlap, CLAMPED where its damper would pull, else ON."""
+    if delta <= 0.0:
+        return OFF
+    return ON if 1.0 + damping * rate > 0.0 else CLAMPED
+
+
+@kernel
+def add_forces(x, v, model, contacts, stiffness, damping, frozen, f):
+    """Add every listed contact's force to ``f`` (n, 3): in its frozen mode if ``frozen`` (ON
+    contacts by the law's continuation), else in the mode of the state. ``damping``: by kind."""
+    for c in range(contacts.count[0]):
+        kind, a = contacts.kind[c], contacts.a[c]
+        ft = feature(x, model, kind, a, contacts.b[c])
+        ux, uy, uz = relative_velocity(v, a, ft)
+        closing = -(ux * ft.nx + uy * ft.ny + uz * ft.nz)
+        d = damping[kind]
+        mode = contacts.mode[c] if frozen else mode_of(ft.delta, closing, d)
+        if mode == OFF:
+            continue
+        k = stiffness * ft.weight
+        normal = law.free_normal_force(k, ft.delta, closing, d) if mode == ON else 0.0
+        _spread(f, a, ft, normal * ft.nx, normal * ft.ny, normal * ft.nz)
+        if ft.slope != 0.0:
+            segment_slope_force(f, x, a, ft, stiffness)
+        friction = material(model, kind)[1]
+        if friction > 0.0 and normal != 0.0:  # frozen ON: the continuation's, up to the event
+            tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
+            drag = law.friction_factor(friction, normal, math.sqrt(tx * tx + ty * ty + tz * tz))
+            _spread(f, a, ft, -drag * tx, -drag * ty, -drag * tz)
+
+
+@inline_kernel
+def segment_slope_force(f, x, a, ft, stiffness):
+    """The force of the segment penalty's weight changing along the segment: minus the gradient
+    of ``stiffness delta^2 w(s) / 2`` through ``s``, on the ball and the segment's two ends."""
+    scale = -0.5 * stiffness * ft.delta * ft.delta * ft.slope / ft.l2
+    i = ft.i
+    ax, ay, az = x[a, 0] - x[i, 0], x[a, 1] - x[i, 1], x[a, 2] - x[i, 2]
+    # ds/dx_a = e / l2; ds/dx_j = (a - 2 s e) / l2; ds/dx_i = -(both)
+    gx, gy, gz = ax - 2.0 * ft.s * ft.ex, ay - 2.0 * ft.s * ft.ey, az - 2.0 * ft.s * ft.ez
+    _push(f, a, ft.ex, ft.ey, ft.ez, scale)
+    _push(f, ft.j, gx, gy, gz, scale)
+    _push(f, i, ft.ex + gx, ft.ey + gy, ft.ez + gz, -scale)
+
+
+@kernel
+def event_values(x, v, model, contacts, damping, touch, on, rate):
+    """Each listed contact's event functions in the state: its overlap (``touch``) and
+    ``min(overlap, 1 + d rate)`` (``on``): OFF where touch <= 0, ON where on > 0, else CLAMPED;
+    and the overlap's ``rate`` of change (m/s)."""
+    for c in range(contacts.count[0]):
+        kind, a = contacts.kind[c], contacts.a[c]
+        ft = feature(x, model, kind, a, contacts.b[c])
+        ux, uy, uz = relative_velocity(v, a, ft)
+        closing = -(ux * ft.nx + uy * ft.ny + uz * ft.nz)
+        touch[c] = ft.delta
+        on[c] = min(ft.delta, 1.0 + damping[kind] * closing)
+        rate[c] = closing
+
+
+@kernel
+def modes_from(touch, on, count, mode):
+    """Write into ``mode`` the mode each of ``count`` contacts is in, from its event values."""
+    for c in range(count):
+        mode[c] = OFF if touch[c] <= 0.0 else (ON if on[c] > 0.0 else CLAMPED)
+
+
+@kernel
+def potential(x, model, contacts, stiffness):
+    """The energy (J) the listed contacts' springs hold: ``stiffness w delta^2 / 2`` each."""
+    total = 0.0
+    for c in range(contacts.count[0]):
+        ft = feature(x, model, contacts.kind[c], contacts.a[c], contacts.b[c])
+        if ft.delta > 0.0:
+            total += 0.5 * stiffness * ft.weight * ft.delta * ft.delta
+    return total
+
+
+@inline_kernel
+def _add(contacts, kind, a, b):
+    """List the contact (``kind``, ``a``, ``b``)."""
+    c = contacts.count[0]
+    contacts.kind[c], contacts.a[c], contacts.b[c] = kind, a, b
+    contacts.count[0] = c + 1
+
+
+@kernel
+def gather(x, model, margin, contacts):
+    """List every contact whose overlap is above ``-margin`` (m) now: those that may act before
+    the bodies have moved ``margin`` closer. Segments by the distance to their closed span."""
+    contacts.count[0] = 0
+    n_net, radius = model.n_net, model.ball_radius
+    for a in range(n_net, x.shape[0]):
+        for p in range(n_net):
+            if feature(x, model, PARTICLE, a, p).delta > -margin:
+                _add(contacts, PARTICLE, a, p)
+        for s in range(model.segments.shape[0]):
+            if _segment_gap(x, model.segments[s, 0], model.segments[s, 1], a) < radius + margin:
+                _add(contacts, SEGMENT, a, s)
+        for p in range(model.poles.radius.shape[0]):
+            if feature(x, model, POLE, a, p).delta > -margin:
+                _add(contacts, POLE, a, p)
+        for other in range(a + 1, x.shape[0]):
+            if feature(x, model, BALL, a, other).delta > -margin:
+                _add(contacts, BALL, a, other)
+        if x[a, 2] < radius + margin:
+            _add(contacts, GROUND, a, -1)
+    for p in range(n_net):
+        if x[p, 2] < margin:
+            _add(contacts, NET_GROUND, p, -1)
+
+
+@inline_kernel
+def _segment_gap(x, i, j, a):
+    """Distance from ``a`` to the closed segment i-j."""
+    ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
+    s = ((x[a, 0] - x[i, 0]) * ex + (x[a, 1] - x[i, 1]) * ey + (x[a, 2] - x[i, 2]) * ez) / (ex * ex + ey * ey + ez * ez)
+    s = min(max(s, 0.0), 1.0)
+    dx, dy, dz = x[a, 0] - x[i, 0] - s * ex, x[a, 1] - x[i, 1] - s * ey, x[a, 2] - x[i, 2] - s * ez
+    return math.sqrt(dx * dx + dy * dy + dz * dz)

@@ -1,0 +1,132 @@
+"""The compliant contact model: its integrators converge at their orders through contact (RK4
+only because contact events are located inside its steps), its law returns the configured
+restitution and keeps the energy of an elastic bounce, and the scene and env refuse what it
+cannot do."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import netgym  # noqa: F401  (registers the ids)
+from netgym.bench.accuracy.contact_convergence import fitted_slope
+from netgym.errors import ConfigError, InvalidArgumentError
+from netgym.physics.compliant import law
+from netgym.physics.simulator import Simulator
+from netgym.physics.throw import throw
+
+SMALL_NET = {"simulation.contact_model": "compliant", "simulation.integrator": "rk4", "simulation.dt": 1e-3,
+             "net.particles": [3, 3, 3]}
+BOUNCE = ([5.0, 5.0, 1.0], [1.0, 0.5, -3.0])     # onto the ground, sliding: friction acts
+STRIKE = ([0.1, 0.2, 2.4], [0.5, 0.0, -6.0])     # into the small net's bottom: particles and segments
+
+
+def _ball_path(sim: Simulator, launch: tuple, integrator: str, dt: float, seconds: float = 0.4) -> np.ndarray:
+    """The ball's position every 10 ms of ``seconds`` from ``launch`` in the settled scene."""
+    sim.reset()
+    sim.launch_ball(*launch)
+    path = []
+    for _ in range(round(seconds / 0.01)):
+        sim.step(round(0.01 / dt), integrator, dt)
+        path.append(sim.ball_positions[0].copy())
+    return np.array(path)
+
+
+@pytest.fixture(scope="module")
+def small_net() -> Simulator:
+    return Simulator("basket", SMALL_NET)
+
+
+@pytest.mark.parametrize("launch", [BOUNCE, STRIKE], ids=["ground bounce", "net strike"])
+def test_rk4_converges_at_fourth_order_through_contact(small_net: Simulator, launch: tuple) -> None:
+    """Errors against RK4 at a 16th of the finest step fall with every halving at slope >= 3.5
+    (impulses, or contacts whose onsets and separations a step did not locate, give about 1-2).
+    Finer steps would meet the rounding of some 1e5 steps (about 5e-11 m)."""
+    reference = _ball_path(small_net, launch, "rk4", 1e-4 / 16)
+    dts = [8e-4, 4e-4, 2e-4, 1e-4]
+    errors = [np.abs(_ball_path(small_net, launch, "rk4", dt) - reference).max() for dt in dts]
+    assert errors[0] > 1e-8  # the ball met something: there was an error to converge
+    self_difference = np.abs(reference - _ball_path(small_net, launch, "rk4", 1e-4 / 32)).max()
+    assert self_difference < 0.1 * errors[-1]  # the reference converged
+    assert all(fine < coarse for coarse, fine in zip(errors, errors[1:])), errors
+    assert fitted_slope(dts, errors) >= 3.5, errors
+
+
+@pytest.mark.parametrize("integrator", ["explicit_euler", "symplectic_euler", "imex_euler"])
+def test_euler_methods_converge_at_first_order_through_contact(small_net: Simulator, integrator: str) -> None:
+    reference = _ball_path(small_net, STRIKE, "rk4", 5e-5 / 8)
+    dts = [2e-4, 1e-4, 5e-5]
+    errors = [np.abs(_ball_path(small_net, STRIKE, integrator, dt) - reference).max() for dt in dts]
+    assert all(fine < coarse for coarse, fine in zip(errors, errors[1:])), errors
+    assert fitted_slope(dts, errors) >= 0.9, errors
+
+
+def _bounce_speed(restitution: float, speed: float, friction: float = 0.0, gravity: float = 0.0) -> tuple[float, float]:
+    """(rebound speed, total energy before and after: their difference) of a ball sent straight
+    down onto the ground at ``speed`` (RK4 at 10 us)."""
+    sim = Simulator("basket", {**SMALL_NET, "contact.ball_ground.restitution": restitution,
+                               "contact.ball_ground.friction": friction, "simulation.gravity": gravity})
+    radius, mass = sim.model.ball_radius, sim.model.ball_mass
+    sim.launch_ball([5.0, 5.0, radius + 0.05], [0.0, 0.0, -speed])
+
+    def energy() -> float:
+        z, w = sim.ball_positions[0][2], sim.state.v[-1, 2]
+        return 0.5 * mass * w * w - mass * gravity * z
+
+    before = energy()
+    sim.step(round(0.2 / 1e-5), "rk4", 1e-5)
+    assert sim.ball_positions[0][2] > radius  # off the ground again
+    return float(sim.state.v[-1, 2]), energy() - before
+
+
+def test_a_contact_returns_its_restitution_at_the_reference_speed() -> None:
+    rebound, _ = _bounce_speed(0.5, law.REFERENCE_SPEED)
+    assert rebound == pytest.approx(0.5 * law.REFERENCE_SPEED, rel=1e-8)
+
+
+def test_slower_approaches_bounce_more_as_hunt_crossley_says() -> None:
+    """Restitution 1 - O(d v): the return ratio rises towards 1 as the approach slows."""
+    ratios = [_bounce_speed(0.5, speed)[0] / speed for speed in (10.0, 5.0, 1.0)]
+    assert ratios[0] < ratios[1] < ratios[2] < 1.0
+
+
+def test_an_elastic_contact_keeps_the_energy_of_a_bounce_under_gravity() -> None:
+    rebound, change = _bounce_speed(1.0, 4.0, gravity=-9.81)
+    assert abs(change) < 1e-9
+    assert rebound > 0.0
+
+
+def test_dissipation_solves_the_restitution_relation() -> None:
+    for e in (0.1, 0.5, 0.9):
+        y = law.dissipation(e, 1.0)
+        assert y - math.log1p(y) + e * y + math.log1p(-e * y) == pytest.approx(0.0, abs=1e-12)
+    assert law.dissipation(1.0, 5.0) == 0.0
+
+
+def test_a_compliant_full_simulation_catches_a_ball_dropped_into_the_basket() -> None:
+    sim = Simulator("basket", {"simulation.contact_model": "compliant"})
+    result = throw(sim, [0.2, 0.1, 3.6], [0.0, 0.0, -2.0], fast=False)
+    assert result.captured
+    assert 0.3 < result.final_position[2] < 1.0   # on the bottom, not through it
+
+
+def test_the_scene_refuses_an_unknown_contact_model_and_implicit_euler_with_the_compliant_one() -> None:
+    with pytest.raises(ConfigError, match="simulation.contact_model"):
+        Simulator("basket", {"simulation.contact_model": "soft"})
+    with pytest.raises(ConfigError, match="implicit_euler"):
+        Simulator("basket", {"simulation.contact_model": "compliant", "simulation.integrator": "implicit_euler"})
+
+
+def test_the_fast_path_refuses_the_compliant_model_by_name() -> None:
+    with pytest.raises(InvalidArgumentError, match="contact_model"):
+        gym.make("NetCatch-v0", contact_model="compliant")
+    sim = Simulator("basket", {"simulation.contact_model": "compliant"})
+    with pytest.raises(ConfigError, match="fast=False"):
+        throw(sim, [0.2, 0.1, 3.6], [0.0, 0.0, -2.0])
+    env = gym.make("NetCatch-v0", contact_model="compliant", fast=False, balls_per_episode=1)
+    env.reset(seed=0)
+    _, _, terminated, _, info = env.step(env.action_space.sample())
+    assert terminated and "captured" in info
