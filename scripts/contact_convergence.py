@@ -9,6 +9,8 @@ Usage::
 
     python scripts/contact_convergence.py --results docs/results/contact_convergence.json \
         --plot docs/figures/contact_convergence.png
+    python scripts/contact_convergence.py --contact-model compliant --strikes 8 \
+        --results docs/results/contact_convergence_compliant.json
     python scripts/contact_convergence.py --quick --results /tmp/convergence.json   # a smoke test
 """
 
@@ -19,8 +21,8 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from netgym.bench.accuracy.contact_convergence import (ENSEMBLE_OFFSET, LADDERS, QUICK_LADDERS, REFERENCE_DT, SAMPLE,
-                                              ensemble_launches, measure_strike, summary)
+from netgym.bench.accuracy.contact_convergence import (ENSEMBLE_OFFSET, REFERENCE_DT, SAMPLE, ensemble_launches,
+                                                       ladders_of, measure_strike, summary)
 from netgym.bench.accuracy.convergence_table import block
 from netgym.bench.plots import plot_contact_convergence
 from netgym.bench.results import read_results, write_results
@@ -35,15 +37,17 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="0.3 s strikes, two steps each, 2 strikes")
     parser.add_argument("--results", type=Path, required=True, help="the result file (JSON), resumed if it exists")
     parser.add_argument("--plot", type=Path, help="also draw the ensemble's errors by phase to this PNG")
+    parser.add_argument("--contact-model", choices=("impulse", "compliant"), default="impulse")
     args = parser.parse_args()
-    ladders = QUICK_LADDERS if args.quick else LADDERS
+    ladders = ladders_of(args.contact_model, args.quick)
     seconds, reference_dt = (0.3, REFERENCE_DT * 32) if args.quick else (STRIKE_SECONDS, REFERENCE_DT)
     count = 2 if args.quick else args.strikes
     settings = {"ladders": {k: list(v) for k, v in ladders.items()}, "strike_seconds": seconds, "sample": SAMPLE,
                 "reference_dt": reference_dt, "offset": ENSEMBLE_OFFSET, "ensemble_size": count}
+    settings.update({"contact_model": args.contact_model} if args.contact_model != "impulse" else {})
     kept = _resumable(args.results, settings)
     launches = [STRIKE, *ensemble_launches(count)]
-    sim = Simulator("basket", check_stability=False)
+    sim = Simulator("basket", {"simulation.contact_model": args.contact_model}, check_stability=False)
     runs_per_strike = 2 + sum(len(v) for v in ladders.values())
     bar = tqdm(total=runs_per_strike * (len(launches) - len(kept)), desc="runs of every strike", unit="run")
     for i in range(len(kept), len(launches)):

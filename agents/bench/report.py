@@ -18,6 +18,8 @@ from agents.bench.outcomes import outcome_accuracy
 from agents.bench.report_text import (
     AGREEMENT_NOTES,
     AGREEMENT_TEXT,
+    COMPLIANT_CONVERGENCE_NOTES,
+    COMPLIANT_CONVERGENCE_TEXT,
     CONTACT_CONVERGENCE_NOTES,
     CONTACT_CONVERGENCE_TEXT,
     CREEP_NOTES,
@@ -43,6 +45,7 @@ from agents.bench.report_text import (
 )
 from agents.bench.throws import sample_throws
 from netgym.bench.accuracy import convergence_table, creep, pause_accuracy
+from netgym.bench.accuracy.contact_convergence import RESULT_FILES
 from netgym.bench.accuracy.fast_path import CASES, compare, summarise
 from netgym.bench.accuracy.stability_limits import stability_limits
 from netgym.bench.accuracy.work_precision import SAMPLE, STRIKE, STRIKE_SECONDS, work_precision
@@ -292,8 +295,15 @@ def to_markdown(report: Report, record: dict | None = None) -> str:
     out += ["", "## 12. Convergence through contact", "", CONTACT_CONVERGENCE_TEXT, "",
             "![contact convergence](figures/contact_convergence.png)", "", "<!-- quote:contact-convergence -->",
             convergence_table.block(RESULTS / "contact_convergence.json"), "<!-- /quote:contact-convergence -->", "",
-            CONTACT_CONVERGENCE_NOTES]
+            CONTACT_CONVERGENCE_NOTES, "", "### The compliant contact model", "", COMPLIANT_CONVERGENCE_TEXT, "",
+            "<!-- quote:compliant-convergence -->", compliant_convergence(), "<!-- /quote:compliant-convergence -->", "",
+            COMPLIANT_CONVERGENCE_NOTES]
     return "\n".join(out) + "\n"
+
+
+def compliant_convergence() -> str:
+    """Section 12's tables of the compliant contact model, from its own result file."""
+    return convergence_table.block(RESULTS / RESULT_FILES["compliant"], "--contact-model compliant ")
 
 
 def _roofline_table() -> str:

@@ -26,6 +26,7 @@ sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
 from agents.baselines import report as baselines  # noqa: E402
+from agents.bench.report import compliant_convergence  # noqa: E402
 from agents.policies import SHIPPED_BASELINES  # noqa: E402
 from netgym.bench.accuracy import convergence_table
 from netgym.bench.speed import roofline, speed_table  # noqa: E402
@@ -264,6 +265,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "first-step": first_step,
     "variant-speed": lambda: speed_table.block(RESULTS / "variant_speed.json"),
     "contact-convergence": lambda: convergence_table.block(RESULTS / "contact_convergence.json"),
+    "compliant-convergence": compliant_convergence,
     "variants-summary": variants_summary,
     "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),

@@ -39,6 +39,15 @@ LADDERS = {
 }
 """The dt of each integrator (its stable ones; implicit Euler's finest left out for its cost)."""
 QUICK_LADDERS = {integrator: dts[:2] for integrator, dts in LADDERS.items()}
+RESULT_FILES = {"impulse": "contact_convergence.json", "compliant": "contact_convergence_compliant.json"}
+"""The result file of each contact model's measurement, in ``docs/results``."""
+
+
+def ladders_of(contact_model: str, quick: bool = False) -> dict[str, tuple[float, ...]]:
+    """The integrators and steps measured with ``contact_model``: :data:`LADDERS` (or the
+    quick ones), less implicit Euler, which the compliant model does not take."""
+    ladders = QUICK_LADDERS if quick else LADDERS
+    return {k: v for k, v in ladders.items() if contact_model == "impulse" or k != "implicit_euler"}
 ENSEMBLE_OFFSET = 0.03           # m: the ensemble's launch points lie within this of the strike's
 FLAG_FACTOR = 10.0               # a row's error below this many self-differences is flagged
 ROUND_OFF = 1e-10                # m: errors below this are round-off, no slope is fitted to them

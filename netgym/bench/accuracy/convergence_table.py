@@ -86,11 +86,11 @@ def default_cost(many: Mapping[str, Any]) -> str:
             f"{row['wall_per_sim_s']:.3g} wall s per simulated s.")
 
 
-def block(path: Path) -> str:
+def block(path: Path, flags: str = "") -> str:
     """Every table of the result file at ``path`` with the reference's self-difference and the
-    source line, or how to make the file."""
+    source line, or how to make the file (the script's ``flags`` before its ``--results``)."""
     if not path.is_file():
-        return f"Not measured yet: `python scripts/contact_convergence.py --results docs/results/{path.name}`."
+        return f"Not measured yet: `python scripts/contact_convergence.py {flags}--results docs/results/{path.name}`."
     record = read_results(path)
     figures = record["figures"]
     strike, many = figures["strike"], summary(figures["ensemble"] or [figures["strike"]])
