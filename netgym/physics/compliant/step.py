@@ -30,7 +30,7 @@ from netgym.physics.compliant import contacts as cl
 from netgym.physics.compliant import law
 from netgym.physics.kernels.air import _acceleration as air_acceleration
 from netgym.physics.kernels.forces import accelerations
-from netgym.physics.kernels.integrators import step_imex_euler
+from netgym.physics.kernels.integrators import rk4_accumulate, rk4_combine, rk4_stage_state, step_imex_euler
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.kernels.rows import copy_rows
 
@@ -102,22 +102,10 @@ def _rk4(x0, v0, inv_mass, model, net_gravity, h, work, stiffness, damping, x1, 
     copy_rows(xsum, v0)
     copy_rows(vsum, a)
     for stage in range(3):
-        step = h if stage == 2 else 0.5 * h
-        weight = 1.0 if stage == 2 else 2.0
-        for k in range(x0.shape[0]):
-            for c in range(3):
-                vel = vs[k, c] if stage > 0 else v0[k, c]
-                xs[k, c] = x0[k, c] + step * vel
-                vs[k, c] = v0[k, c] + step * a[k, c]
+        rk4_stage_state(x0, v0, a, xs, vs, stage, h)
         rhs(xs, vs, inv_mass, model, net_gravity, work.contacts, stiffness, damping, True, f, a)
-        for k in range(x0.shape[0]):
-            for c in range(3):
-                xsum[k, c] += weight * vs[k, c]
-                vsum[k, c] += weight * a[k, c]
-    for k in range(x0.shape[0]):
-        for c in range(3):
-            x1[k, c] = x0[k, c] + h / 6.0 * xsum[k, c]
-            v1[k, c] = v0[k, c] + h / 6.0 * vsum[k, c]
+        rk4_accumulate(xsum, vsum, vs, a, stage)
+    rk4_combine(x0, v0, xsum, vsum, h, x1, v1)
 
 
 @kernel

@@ -155,23 +155,42 @@ def step_rk4(x, v, inv_mass, gravity, drag, springs, dt, work):
     copy_rows(xsum, v)
     copy_rows(vsum, a)
     for stage in range(3):
-        h = dt if stage == 2 else 0.5 * dt
-        weight = 1.0 if stage == 2 else 2.0
-        # stage velocity is v + h * a(prev); stage position is x + h * v(prev)
-        for k in range(x.shape[0]):
-            for c in range(3):
-                vel = vs[k, c] if stage > 0 else v[k, c]
-                xs[k, c] = x[k, c] + h * vel
-                vs[k, c] = v[k, c] + h * a[k, c]
+        rk4_stage_state(x, v, a, xs, vs, stage, dt)
         accelerations(xs, vs, inv_mass, gravity, drag, springs, a)
-        for k in range(x.shape[0]):
-            for c in range(3):
-                xsum[k, c] += weight * vs[k, c]
-                vsum[k, c] += weight * a[k, c]
+        rk4_accumulate(xsum, vsum, vs, a, stage)
+    rk4_combine(x, v, xsum, vsum, dt, x, v)
+
+
+@inline_kernel
+def rk4_stage_state(x, v, a, xs, vs, stage, dt):
+    """The state (xs, vs) at which RK4 evaluates its stage ``stage + 1`` from the step's start
+    (x, v) and the last evaluation ``a``: half a step on (stages 0, 1), a whole one on (stage 2)."""
+    h = dt if stage == 2 else 0.5 * dt
     for k in range(x.shape[0]):
         for c in range(3):
-            x[k, c] += dt / 6.0 * xsum[k, c]
-            v[k, c] += dt / 6.0 * vsum[k, c]
+            vel = vs[k, c] if stage > 0 else v[k, c]
+            xs[k, c] = x[k, c] + h * vel
+            vs[k, c] = v[k, c] + h * a[k, c]
+
+
+@inline_kernel
+def rk4_accumulate(xsum, vsum, vs, a, stage):
+    """Add the evaluation at the state of ``stage`` (see :func:`rk4_stage_state`) to RK4's sums,
+    weighted 2 for the half-step stages and 1 for the last."""
+    weight = 1.0 if stage == 2 else 2.0
+    for k in range(xsum.shape[0]):
+        for c in range(3):
+            xsum[k, c] += weight * vs[k, c]
+            vsum[k, c] += weight * a[k, c]
+
+
+@inline_kernel
+def rk4_combine(x, v, xsum, vsum, dt, x_out, v_out):
+    """RK4's end of step from its start (x, v) and sums: into (x_out, v_out), which may be (x, v)."""
+    for k in range(x.shape[0]):
+        for c in range(3):
+            x_out[k, c] = x[k, c] + dt / 6.0 * xsum[k, c]
+            v_out[k, c] = v[k, c] + dt / 6.0 * vsum[k, c]
 
 
 @kernel
