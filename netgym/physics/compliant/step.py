@@ -57,6 +57,7 @@ class Work(NamedTuple):
     changed: np.ndarray
     rows: np.ndarray
     events: np.ndarray
+    damping: np.ndarray
 
 
 @kernel
@@ -66,7 +67,7 @@ def new_work(x, model):
     size = contacts.kind.shape[0]
     return Work(contacts, np.empty(size), np.empty(size), np.empty(size), np.empty(size), np.empty(size),
                 np.empty(size), np.empty(size, dtype=np.int8), np.empty(size, dtype=np.int64),
-                np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64))
+                np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model))
 
 
 @kernel
@@ -367,7 +368,7 @@ def _compliant_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, wo
         raise NumbaTypeError(f"the compliant contact model has no step for {integrator}")
 
     def step(settings, x, v, inv_mass, model, net_gravity, h, scratch, work):
-        stiffness, damping = settings.contact_stiffness, cl.dampings(model)
+        stiffness, damping = settings.contact_stiffness, work.damping
         cl.gather(x, model, _margin(v, h), work.contacts)
         parts = _inner_steps(x, v, inv_mass, h, stiffness, work.contacts)
         part = h / parts
