@@ -22,7 +22,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from netgym.bench.accuracy.contact_convergence import (ENSEMBLE_OFFSET, REFERENCE_DT, SAMPLE, ensemble_launches,
-                                                       ladders_of, measure_strike, summary)
+                                                       ladders_of, measure_strike, summary, warm_up)
 from netgym.bench.accuracy.convergence_table import block
 from netgym.bench.plots import plot_contact_convergence
 from netgym.bench.results import read_results, write_results
@@ -48,6 +48,7 @@ def main() -> None:
     kept = _resumable(args.results, settings)
     launches = [STRIKE, *ensemble_launches(count)]
     sim = Simulator("basket", {"simulation.contact_model": args.contact_model}, check_stability=False)
+    warm_up(sim, ladders)
     runs_per_strike = 2 + sum(len(v) for v in ladders.values())
     bar = tqdm(total=runs_per_strike * (len(launches) - len(kept)), desc="runs of every strike", unit="run")
     for i in range(len(kept), len(launches)):

@@ -119,6 +119,16 @@ def measure_strike(sim: Simulator, launch: tuple[np.ndarray, np.ndarray], ladder
             "reference_dt": reference_dt, "self_difference": phase_errors(half, reference, contact), "rows": rows}
 
 
+def warm_up(sim: Simulator, ladders: dict[str, Iterable[float]]) -> None:
+    """Compile every integrator of ``ladders`` (a step of each at its first dt, with a ball in the
+    scene) before anything is timed; the scene is reset after."""
+    sim.reset()
+    sim.launch_ball(*STRIKE)
+    for integrator, dts in ladders.items():
+        sim.step(1, integrator, next(iter(dts)))
+    sim.reset()
+
+
 def ensemble_launches(count: int, seed: int = 0) -> list[tuple[np.ndarray, np.ndarray]]:
     """``count`` launches of the strike's velocity from points drawn uniformly within
     :data:`ENSEMBLE_OFFSET` of its launch point (seeded)."""
