@@ -4,8 +4,8 @@ contacts' (:mod:`~netgym.physics.compliant.contacts`), by the integrator the set
 - RK4 freezes the contacts' modes at a step's start and integrates the smooth system they
   give; where the step's end finds a mode changed, it finds the earliest instant a changed
   contact's event function crosses zero (Illinois' regula falsi on RK4 steps of a fraction of
-  the step, bisecting where it stalls), steps to just past it, takes the modes there and goes on. Between events the forces
-  are smooth, so RK4 keeps its fourth order through contact.
+  the step, bisecting where it stalls), steps to just past it, takes the modes there and goes
+  on. Between events the forces are smooth, so RK4 keeps its fourth order through contact.
 - Explicit and symplectic Euler take the forces of the mode the state is in.
 - IMEX Euler takes the contacts' springs explicitly and their dampers and friction implicitly
   (each contact's normal and then tangential velocity solved by backward Euler, in list order),
@@ -355,8 +355,9 @@ def _margin(v, h):
 def compliant_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, work):
     """One substep of ``h`` of the compliant model with the integrator of ``settings``; the
     net's weight ``net_gravity``; ``scratch``: the integrators'
-    :class:`~netgym.physics.kernels.integrators.Scratch`; ``work``: :func:`new_work`'s. For numba
-    kernels only: the integrator is chosen when the calling kernel compiles."""
+    :class:`~netgym.physics.kernels.integrators.Scratch`; ``work``: :func:`new_work`'s. Returns
+    the parts the contacts' springs split it into. For numba kernels only: the integrator is
+    chosen when the calling kernel compiles."""
     raise TypeError("compliant_step runs inside numba kernels only")
 
 
@@ -382,4 +383,5 @@ def _compliant_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, wo
             else:
                 _euler(x, v, inv_mass, model, net_gravity, part, work, stiffness, damping,
                        integrator == Integrator.SYMPLECTIC_EULER)
+        return parts
     return step

@@ -144,8 +144,8 @@ def substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, bu
     """The motion and contacts of one substep of ``h`` of :func:`_step`, by the contact model of
     ``settings``: the smooth forces, the balls' free flight and then the contacts' projections
     and impulses, or :func:`~netgym.physics.compliant.step.compliant_step` (``work``: its
-    scratch, from :func:`contact_work`). For numba kernels only: the model is chosen when the
-    calling kernel compiles."""
+    scratch, from :func:`contact_work`; the parts it splits the substep into booked as
+    substeps). For numba kernels only: the model is chosen when the calling kernel compiles."""
     raise TypeError("substep runs inside numba kernels only")
 
 
@@ -154,7 +154,8 @@ def _substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, b
     """The implementation of :func:`substep` for the contact model of ``settings``' type."""
     if getattr(settings.instance_class, "CONTACT_MODEL", ContactModel.IMPULSE) == ContactModel.COMPLIANT:
         def step(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
-            compliant_step(settings, bodies.x, bodies.v, bodies.inv_mass, model, net_gravity, h, scratch, work)
+            parts = compliant_step(settings, bodies.x, bodies.v, bodies.inv_mass, model, net_gravity, h, scratch, work)
+            stats[0].substeps += parts - 1  # the caller books one
         return step
 
     def impulse_step(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):

@@ -130,3 +130,17 @@ def test_the_fast_path_refuses_the_compliant_model_by_name() -> None:
     env.reset(seed=0)
     _, _, terminated, _, info = env.step(env.action_space.sample())
     assert terminated and "captured" in info
+
+
+def test_the_parts_a_stiff_contact_takes_are_booked_as_substeps() -> None:
+    """IMEX Euler at 2 ms splits a step while a ball touches the net (the contact springs'
+    stability): the counters say so."""
+    counts = []
+    for model in ("impulse", "compliant"):
+        sim = Simulator("basket", {"simulation.contact_model": model})
+        sim.launch_ball([0.3, 0.2, 0.9], [0.0, 0.0, 0.0])   # resting on the bottom within a few steps
+        sim.step(200)
+        before = sim.substeps
+        sim.step(100)
+        counts.append(sim.substeps - before)
+    assert counts[0] == 100 and counts[1] == 200
