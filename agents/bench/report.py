@@ -44,7 +44,7 @@ from agents.bench.report_text import (
     VARIANT_SPEED_TEXT,
 )
 from agents.bench.throws import sample_throws
-from netgym.bench.accuracy import convergence_table, creep, pause_accuracy
+from netgym.bench.accuracy import convergence_table, creep, model_agreement, pause_accuracy
 from netgym.bench.accuracy.contact_convergence import RESULT_FILES
 from netgym.bench.accuracy.fast_path import CASES, compare, summarise
 from netgym.bench.accuracy.stability_limits import stability_limits
@@ -297,7 +297,8 @@ def to_markdown(report: Report, record: dict | None = None) -> str:
             convergence_table.block(RESULTS / "contact_convergence.json"), "<!-- /quote:contact-convergence -->", "",
             CONTACT_CONVERGENCE_NOTES, "", "### The compliant contact model", "", COMPLIANT_CONVERGENCE_TEXT, "",
             "<!-- quote:compliant-convergence -->", compliant_convergence(), "<!-- /quote:compliant-convergence -->", "",
-            COMPLIANT_CONVERGENCE_NOTES]
+            COMPLIANT_CONVERGENCE_NOTES, "", "<!-- quote:model-agreement -->",
+            model_agreement.block(RESULTS / "model_agreement.json"), "<!-- /quote:model-agreement -->"]
     return "\n".join(out) + "\n"
 
 

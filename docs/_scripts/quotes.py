@@ -28,7 +28,7 @@ import netgym  # noqa: E402
 from agents.baselines import report as baselines  # noqa: E402
 from agents.bench.report import compliant_convergence  # noqa: E402
 from agents.policies import SHIPPED_BASELINES  # noqa: E402
-from netgym.bench.accuracy import convergence_table
+from netgym.bench.accuracy import convergence_table, model_agreement
 from netgym.bench.speed import roofline, speed_table  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
 
@@ -266,6 +266,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "variant-speed": lambda: speed_table.block(RESULTS / "variant_speed.json"),
     "contact-convergence": lambda: convergence_table.block(RESULTS / "contact_convergence.json"),
     "compliant-convergence": compliant_convergence,
+    "model-agreement": lambda: model_agreement.block(RESULTS / "model_agreement.json"),
     "variants-summary": variants_summary,
     "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),

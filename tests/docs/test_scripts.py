@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import re
 import subprocess
 import sys
@@ -228,3 +229,11 @@ def test_contact_convergence_quick_writes_resumable_results(tmp_path: Path) -> N
     assert "first 10 ms of contact" in out and "| rk4 |" in out
     assert figure.read_bytes().startswith(b"\x89PNG")
     assert _run("scripts/contact_convergence.py", "--quick", "--results", str(results)) == out
+
+
+@pytest.mark.slow
+def test_model_agreement_quick_runs_both_contact_models_on_the_same_throws() -> None:
+    figures = json.loads(_run("scripts/model_agreement.py", "--quick"))
+    assert figures["throws"] == 6 and set(figures["captured"]) == {"impulse_fast", "impulse_full", "compliant_full"}
+    assert figures["agreement"]["impulse fast vs impulse full"] == 1.0
+    assert all(0.0 < s for s in figures["seconds_per_throw"].values())
