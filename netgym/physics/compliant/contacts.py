@@ -110,8 +110,9 @@ def feature(x, model, kind, a, b):
 
 
 @inline_kernel
-def relative_velocity(v, a, f):
-    """The velocity of ``a`` relative to the point of :class:`Feature` ``f``."""
+def approach(v, a, f):
+    """(ux, uy, uz, closing): the velocity of ``a`` relative to the point of :class:`Feature`
+    ``f``, and the rate at which their overlap grows (its normal component, negated)."""
     ux, uy, uz = v[a, 0], v[a, 1], v[a, 2]
     if f.i >= 0:
         ux -= f.wi * v[f.i, 0]
@@ -121,7 +122,7 @@ def relative_velocity(v, a, f):
         ux -= f.wj * v[f.j, 0]
         uy -= f.wj * v[f.j, 1]
         uz -= f.wj * v[f.j, 2]
-    return ux, uy, uz
+    return ux, uy, uz, -(ux * f.nx + uy * f.ny + uz * f.nz)
 
 
 @kernel
@@ -180,8 +181,7 @@ def add_forces(x, v, model, contacts, stiffness, damping, frozen, f):
     for c in range(contacts.count[0]):
         kind, a = contacts.kind[c], contacts.a[c]
         ft = feature(x, model, kind, a, contacts.b[c])
-        ux, uy, uz = relative_velocity(v, a, ft)
-        closing = -(ux * ft.nx + uy * ft.ny + uz * ft.nz)
+        ux, uy, uz, closing = approach(v, a, ft)
         d = damping[kind]
         mode = contacts.mode[c] if frozen else mode_of(ft.delta, closing, d)
         if mode == OFF:
@@ -220,8 +220,7 @@ def event_values(x, v, model, contacts, damping, touch, on, rate):
     for c in range(contacts.count[0]):
         kind, a = contacts.kind[c], contacts.a[c]
         ft = feature(x, model, kind, a, contacts.b[c])
-        ux, uy, uz = relative_velocity(v, a, ft)
-        closing = -(ux * ft.nx + uy * ft.ny + uz * ft.nz)
+        ux, uy, uz, closing = approach(v, a, ft)
         touch[c] = ft.delta
         on[c] = min(ft.delta, 1.0 + damping[kind] * closing)
         rate[c] = closing

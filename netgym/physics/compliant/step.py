@@ -134,8 +134,8 @@ def _crossing(work, n_changed, end):
     for t in range(n_changed):
         c = work.changed[t]
         frozen = work.contacts.mode[c]
-        # ON and CLAMPED differ in ``on``; OFF and the rest in ``touch``
-        by_on = frozen == cl.ON or work.modes[c] == cl.ON if end else frozen == cl.ON
+        # a change to or from ON shows in ``on``; between OFF and CLAMPED in ``touch``
+        by_on = frozen == cl.ON or work.modes[c] == cl.ON
         start = work.on0[c] if by_on else work.touch0[c]
         value = (work.on1[c] if by_on else work.touch1[c]) if end else start
         least = min(least, value if start > 0.0 else -value)
@@ -146,8 +146,7 @@ def _crossing(work, n_changed, end):
 def _graze(work, count, h):
     """The earliest fraction of a step of ``h`` at which a contact whose overlap has one sign at
     both ends may have had the other (a brief touch, or a brief separation): where the cubic
-    through the overlaps and their rates at the two ends crosses zero, 1.0 if none does; the
-    contact goes to ``changed[0]``."""
+    through the overlaps and their rates at the two ends crosses zero, 1.0 if none does."""
     earliest = 1.0
     for c in range(count):
         d0, d1 = work.touch0[c], work.touch1[c]
@@ -170,7 +169,6 @@ def _graze(work, count, h):
                 value = d0 + t * (r0 + t * (b + t * a))
                 if (value > 0.0) != (d0 > 0.0):
                     earliest = t
-                    work.changed[0] = c
     return earliest
 
 
@@ -193,8 +191,9 @@ def _rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping
             peak = _graze(work, count, left)
             if peak < 1.0:
                 _rk4(x0, v0, inv_mass, model, net_gravity, peak * left, work, stiffness, damping, xlo, vlo)
-                if _changes(xlo, vlo, model, work, damping) > 0:
-                    n_changed, hi = _changes(xlo, vlo, model, work, damping), peak
+                grazed = _changes(xlo, vlo, model, work, damping)
+                if grazed > 0:
+                    n_changed, hi = grazed, peak
                     copy_rows(x1, xlo)
                     copy_rows(v1, vlo)
                     work.events[1] += 1
@@ -285,16 +284,14 @@ def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping):
             + (ft.wj * ft.wj * inv_mass[ft.j] if ft.j >= 0 else 0.0)
         hk = h * stiffness * ft.weight * ft.delta
         d = damping[kind]
-        ux, uy, uz = cl.relative_velocity(v, a, ft)
-        closing = -(ux * ft.nx + uy * ft.ny + uz * ft.nz)
+        _, _, _, closing = cl.approach(v, a, ft)
         after = (closing - w_eff * hk) / (1.0 + w_eff * hk * d)
         push = max(0.0, hk * (1.0 + d * after))
         _impulse(v, inv_mass, a, ft, push * ft.nx, push * ft.ny, push * ft.nz)
         friction = cl.material(model, kind)[1]
         if friction > 0.0 and push > 0.0 and w_eff > 0.0:
-            ux, uy, uz = cl.relative_velocity(v, a, ft)
-            along = ux * ft.nx + uy * ft.ny + uz * ft.nz
-            tx, ty, tz = ux - along * ft.nx, uy - along * ft.ny, uz - along * ft.nz
+            ux, uy, uz, closing = cl.approach(v, a, ft)
+            tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
             factor = law.friction_factor(friction, push / h, math.sqrt(tx * tx + ty * ty + tz * tz))
             keep = 1.0 / (1.0 + h * factor * w_eff)
             scale = -(1.0 - keep) / w_eff
@@ -317,7 +314,8 @@ def _imex(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping, scrat
         for c in range(3):
             v[k, c] += h * inv_mass[k] * f[k, c]
     _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping)
-    balls = v[n_net:].copy()
+    balls = rows[2][n_net:]
+    copy_rows(balls, v[n_net:])
     step_imex_euler(x, v, inv_mass, net_gravity, model.drag, model.springs, h, scratch)
     for k in range(n_net, x.shape[0]):
         ax, ay, az = _ball_acceleration(balls, k - n_net, model)

@@ -149,10 +149,15 @@ def substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, bu
     raise TypeError("substep runs inside numba kernels only")
 
 
+def _compliant(settings) -> bool:
+    """Whether the numba type of ``settings`` is of a compliant contact model's class."""
+    return getattr(settings.instance_class, "CONTACT_MODEL", ContactModel.IMPULSE) == ContactModel.COMPLIANT
+
+
 @overload(substep, jit_options={"error_model": "numpy"})
 def _substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
     """The implementation of :func:`substep` for the contact model of ``settings``' type."""
-    if getattr(settings.instance_class, "CONTACT_MODEL", ContactModel.IMPULSE) == ContactModel.COMPLIANT:
+    if _compliant(settings):
         def step(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work):
             parts = compliant_step(settings, bodies.x, bodies.v, bodies.inv_mass, model, net_gravity, h, scratch, work)
             stats[0].substeps += parts - 1  # the caller books one
@@ -163,6 +168,8 @@ def _substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, b
         before_v, box, _, near = buffers
         n_net = model.n_net
         before = bodies.start[n_net:]
+        for b in range(x.shape[0] - n_net):
+            copy_row(before_v, b, v, n_net + b)
         smooth_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, stats)
         if entered is not None:
             if x.shape[0] > n_net:
@@ -182,7 +189,7 @@ def contact_work(settings, x, model):
 @overload(contact_work, jit_options={"error_model": "numpy"})
 def _contact_work(settings, x, model):
     """The implementation of :func:`contact_work` for the contact model of ``settings``' type."""
-    if getattr(settings.instance_class, "CONTACT_MODEL", ContactModel.IMPULSE) == ContactModel.COMPLIANT:
+    if _compliant(settings):
         return lambda settings, x, model: new_work(x, model)
     return lambda settings, x, model: None
 
@@ -195,7 +202,7 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net
     acceleration gravity gives the net (``model.gravity`` but in a relaxation with inertia);
     ``entered``: the balls' flags, or None for a net without balls, whose kernels numba then
     compiles without the balls' passes (it prunes the branches on ``entered is not None``)."""
-    before_v, box, speeds, near = buffers
+    speeds = buffers[2]
     n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
     start = scratch.work[START_SLOT]  # every body's position at the start of the substep
     before = start[n_net:]
@@ -207,9 +214,6 @@ def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net
     bodies = Bodies(x, v, inv_mass, start)
     for _sub in range(substeps):
         copy_rows(start, x)
-        for b in range(n_balls):
-            for c in range(3):
-                before_v[b, c] = v[n_net + b, c]
         substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work)
         if entered is not None:
             update_entered(x, before, n_net, entered, model.opening)
