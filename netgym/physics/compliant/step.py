@@ -30,7 +30,8 @@ from netgym.physics.compliant import contacts as cl
 from netgym.physics.compliant import law
 from netgym.physics.kernels.air import _acceleration as air_acceleration
 from netgym.physics.kernels.forces import accelerations
-from netgym.physics.kernels.integrators import rk4_accumulate, rk4_combine, rk4_stage_state, step_imex_euler
+from netgym.physics.kernels.integrators import (euler_update, rk4_accumulate, rk4_combine, rk4_stage_state,
+                                                step_imex_euler)
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.kernels.rows import copy_rows
 
@@ -249,14 +250,7 @@ def _euler(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping, symp
     rows = work.rows
     a, f = rows[0], rows[1]
     rhs(x, v, inv_mass, model, net_gravity, work.contacts, stiffness, damping, False, f, a)
-    for k in range(x.shape[0]):
-        for c in range(3):
-            if symplectic:
-                v[k, c] += h * a[k, c]
-                x[k, c] += h * v[k, c]
-            else:
-                x[k, c] += h * v[k, c]
-                v[k, c] += h * a[k, c]
+    euler_update(x, v, a, h, symplectic)
 
 
 @inline_kernel

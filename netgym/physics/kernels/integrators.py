@@ -67,6 +67,13 @@ def step_euler(x, v, inv_mass, gravity, drag, springs, dt, work, symplectic):
     (semi-implicit): v += dt a first, then x += dt v(t+dt)."""
     a = work[0]
     accelerations(x, v, inv_mass, gravity, drag, springs, a)
+    euler_update(x, v, a, dt, symplectic)
+
+
+@inline_kernel
+def euler_update(x, v, a, dt, symplectic):
+    """Euler's update of (x, v) in place by the accelerations ``a`` of their start: explicit
+    (x by the old velocity) or symplectic (x by the new)."""
     for k in range(x.shape[0]):
         for c in range(3):
             if symplectic:
