@@ -294,17 +294,23 @@ def to_markdown(report: Report, record: dict | None = None) -> str:
             speed_table.block(RESULTS / "variant_speed.json"), "<!-- /quote:variant-speed -->", "", VARIANT_SPEED_NOTES]
     out += ["", "## 12. Convergence through contact", "", CONTACT_CONVERGENCE_TEXT, "",
             "![contact convergence](figures/contact_convergence.png)", "", "<!-- quote:contact-convergence -->",
-            convergence_table.block(RESULTS / "contact_convergence.json"), "<!-- /quote:contact-convergence -->", "",
+            contact_convergence("impulse"), "<!-- /quote:contact-convergence -->", "",
             CONTACT_CONVERGENCE_NOTES, "", "### The compliant contact model", "", COMPLIANT_CONVERGENCE_TEXT, "",
-            "<!-- quote:compliant-convergence -->", compliant_convergence(), "<!-- /quote:compliant-convergence -->", "",
-            COMPLIANT_CONVERGENCE_NOTES, "", "<!-- quote:model-agreement -->",
-            model_agreement.block(RESULTS / "model_agreement.json"), "<!-- /quote:model-agreement -->"]
+            "<!-- quote:compliant-convergence -->", contact_convergence("compliant"),
+            "<!-- /quote:compliant-convergence -->", "", COMPLIANT_CONVERGENCE_NOTES, "",
+            "<!-- quote:model-agreement -->", model_agreement_quote(), "<!-- /quote:model-agreement -->"]
     return "\n".join(out) + "\n"
 
 
-def compliant_convergence() -> str:
-    """Section 12's tables of the compliant contact model, from its own result file."""
-    return convergence_table.block(RESULTS / RESULT_FILES["compliant"], "--contact-model compliant ")
+def contact_convergence(contact_model: str) -> str:
+    """Section 12's tables of one contact model (``"impulse"``, ``"compliant"``), from its result file."""
+    flags = "" if contact_model == "impulse" else f"--contact-model {contact_model} "
+    return convergence_table.block(RESULTS / RESULT_FILES[contact_model], flags)
+
+
+def model_agreement_quote() -> str:
+    """Section 12's line on the two contact models' outcomes, from its result file."""
+    return model_agreement.block(RESULTS / "model_agreement.json")
 
 
 def _roofline_table() -> str:

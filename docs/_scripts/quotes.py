@@ -26,9 +26,8 @@ sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
 from agents.baselines import report as baselines  # noqa: E402
-from agents.bench.report import compliant_convergence  # noqa: E402
+from agents.bench.report import contact_convergence, model_agreement_quote  # noqa: E402
 from agents.policies import SHIPPED_BASELINES  # noqa: E402
-from netgym.bench.accuracy import convergence_table, model_agreement
 from netgym.bench.speed import roofline, speed_table  # noqa: E402
 from netgym.bench.results import RESULTS, read_results  # noqa: E402
 
@@ -264,9 +263,9 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "roofline": lambda: roofline.to_markdown(read_results(RESULTS / "roofline.json")),
     "first-step": first_step,
     "variant-speed": lambda: speed_table.block(RESULTS / "variant_speed.json"),
-    "contact-convergence": lambda: convergence_table.block(RESULTS / "contact_convergence.json"),
-    "compliant-convergence": compliant_convergence,
-    "model-agreement": lambda: model_agreement.block(RESULTS / "model_agreement.json"),
+    "contact-convergence": lambda: contact_convergence("impulse"),
+    "compliant-convergence": lambda: contact_convergence("compliant"),
+    "model-agreement": model_agreement_quote,
     "variants-summary": variants_summary,
     "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),
