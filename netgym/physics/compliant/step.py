@@ -11,9 +11,11 @@ contacts' (:mod:`~netgym.physics.compliant.contacts`), by the integrator the set
   (each contact's normal and then tangential velocity solved by backward Euler, in list order),
   then the net's smooth forces as :func:`~netgym.physics.kernels.integrators.step_imex_euler`.
 
-Contact springs are stiff: a substep is split further so that ``h sqrt(5 k w_max) <= 1`` while
-any contact is listed (``w_max``: the largest inverse mass), five springs at most meeting at a
-particle.
+Contact springs are stiff: while any contact is listed, a substep is split further so that
+``h omega <= 1``, ``omega`` a bound on the highest frequency the listed contacts' springs give
+the bodies (:func:`~netgym.physics.compliant.contacts.frequency_bound`); ``<= 1.5`` for IMEX
+Euler, whose explicit part treats those springs by symplectic Euler (stable below 2) and
+their dampers implicitly.
 """
 
 from __future__ import annotations
@@ -38,14 +40,16 @@ from netgym.physics.kernels.rows import copy_rows
 MAX_EVENTS = 256          # events located in one step at most; later ones are stepped over
 LOCATE_ITERATIONS = 100   # trial steps at most per event
 LOCATE_TOLERANCE = 1e-13  # of the step: an event's bracket narrower than this is located
-SPRINGS_AT_A_PARTICLE = 5.0
+SPLIT_LIMIT = 1.0        # h omega at most, omega the contacts' highest frequency (bounded)
+IMEX_SPLIT_LIMIT = 1.5   # IMEX Euler's contact springs: symplectic Euler, stable below 2
 
 
 class Work(NamedTuple):
     """Scratch of a compliant substep: the contact list, its event values at the start, end
     and a trial (``touch0``, ``on0`` ...), the trial's modes, the changed contacts, and (n, 3)
     rows: RK4's stages and the states of the event search; ``events``: the events located and
-    the brief contacts (grazes) among them, counted."""
+    the brief contacts (grazes) among them, counted; ``damping`` by contact kind; ``load``: (n,)
+    scratch of the split's frequency bound."""
 
     contacts: cl.ContactList
     touch0: np.ndarray
@@ -59,6 +63,7 @@ class Work(NamedTuple):
     rows: np.ndarray
     events: np.ndarray
     damping: np.ndarray
+    load: np.ndarray
 
 
 @kernel
@@ -68,7 +73,8 @@ def new_work(x, model):
     size = contacts.kind.shape[0]
     return Work(contacts, np.empty(size), np.empty(size), np.empty(size), np.empty(size), np.empty(size),
                 np.empty(size), np.empty(size, dtype=np.int8), np.empty(size, dtype=np.int64),
-                np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model))
+                np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model),
+                np.zeros(x.shape[0]))
 
 
 @kernel
@@ -320,14 +326,12 @@ def _imex(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping, scrat
 
 
 @kernel
-def _inner_steps(x, v, inv_mass, h, stiffness, contacts):
+def _inner_steps(x, inv_mass, model, h, stiffness, work, limit):
     """Parts of ``h`` the contacts' springs need (see the module): 1 with none listed."""
-    if contacts.count[0] == 0:
+    if work.contacts.count[0] == 0:
         return 1
-    w_max = 0.0
-    for k in range(x.shape[0]):
-        w_max = max(w_max, inv_mass[k])
-    return max(1, int(math.ceil(h * math.sqrt(SPRINGS_AT_A_PARTICLE * stiffness * w_max))))
+    omega = cl.frequency_bound(x, inv_mass, model, work.contacts, stiffness, work.load)
+    return max(1, int(math.ceil(h * omega / limit)))
 
 
 @kernel
@@ -360,10 +364,12 @@ def _compliant_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, wo
     if integrator == Integrator.IMPLICIT_EULER or integrator is None:
         raise NumbaTypeError(f"the compliant contact model has no step for {integrator}")
 
+    limit = IMEX_SPLIT_LIMIT if integrator == Integrator.IMEX_EULER else SPLIT_LIMIT
+
     def step(settings, x, v, inv_mass, model, net_gravity, h, scratch, work):
         stiffness, damping = settings.contact_stiffness, work.damping
         cl.gather(x, model, _margin(v, h), work.contacts)
-        parts = _inner_steps(x, v, inv_mass, h, stiffness, work.contacts)
+        parts = _inner_steps(x, inv_mass, model, h, stiffness, work, limit)
         part = h / parts
         for p in range(parts):
             if p > 0:
