@@ -36,6 +36,16 @@ AIM_DELTA = (1e-3, 1e-2)      # finite-difference steps of speed (m/s) and azimu
 AIM_ELEVATION_STEP = 5.0      # degrees between the elevations tried through air
 
 
+def _solve_2x2(first: np.ndarray, second: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+    """The x with ``x[0] first + x[1] second = rhs`` (the matrix's two columns), by Cramer's
+    rule, or None if the columns are parallel: plain IEEE arithmetic, the same bits on every
+    machine (LAPACK's kernels, chosen by CPU, differ in the last bits)."""
+    det = first[0] * second[1] - second[0] * first[1]
+    if det == 0.0:
+        return None
+    return np.array([(rhs[0] * second[1] - second[0] * rhs[1]) / det, (first[0] * rhs[1] - rhs[0] * first[1]) / det])
+
+
 class BallisticOracle:
     """Chooses actions of NetCatch-v0 by solving the launch parabola.
 
@@ -130,18 +140,17 @@ class BallisticOracle:
         x = np.array([speed, azimuth])
         miss = self._miss(thrower, target, x[0], elevation, x[1])
         for _ in range(AIM_ITERATIONS):
-            if np.linalg.norm(miss) < AIM_TOLERANCE:
+            if math.hypot(*miss) < AIM_TOLERANCE:
                 break
             faster = self._miss(thrower, target, x[0] + AIM_DELTA[0], elevation, x[1])
             turned = self._miss(thrower, target, x[0], elevation, x[1] + AIM_DELTA[1])
-            jacobian = np.column_stack([(faster - miss) / AIM_DELTA[0], (turned - miss) / AIM_DELTA[1]])
-            try:
-                x = x - np.linalg.solve(jacobian, miss)
-            except np.linalg.LinAlgError:
+            step = _solve_2x2((faster - miss) / AIM_DELTA[0], (turned - miss) / AIM_DELTA[1], miss)
+            if step is None:
                 break
+            x = x - step
             x[0] = float(np.clip(x[0], *self.scene.throw.speed))
             miss = self._miss(thrower, target, x[0], elevation, x[1])
-        return x, float(np.linalg.norm(miss))
+        return x, math.hypot(*miss)
 
     def thrower_of(self, row: np.ndarray) -> Thrower:
         """The thrower an observation describes."""

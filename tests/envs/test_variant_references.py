@@ -5,9 +5,9 @@ same throw simulated fully, from launch to the time limit, on a net settled from
 
 Simulating 500 throws a variant fully takes minutes, so the results are stored in
 ``tests/golden/variant_references.json``; the fast path runs on every throw each time and is
-held to them, and a sample is simulated fully again and must reproduce its stored result bit for
-bit. After a change meant to alter results, regenerate the file deliberately and say so in the
-commit::
+held to them, and a sample is simulated fully again and must reproduce its stored result (its
+final position to :data:`POSITION_BITS`). After a change meant to alter results, regenerate the
+file deliberately and say so in the commit::
 
     NETGYM_WRITE_GOLDEN=1 python -m pytest -n 0 tests/envs/test_variant_references.py
 """
@@ -35,6 +35,11 @@ THROWS = 500
 SEED = 31_000
 LEAST_AGREEMENT = 0.995
 AGAIN = 3   # throws of each variant simulated fully again on every run (and every disagreement)
+POSITION_BITS = 1e-9
+"""How far (m) a re-simulated throw's final position may lie from the stored one: the last bits
+of a long simulation differ between CPUs (a ball rolling 6 s on the ground ended 3 ulps apart on
+an AVX-512 EPYC and on the machine that stored it), while any change of the simulation moves it
+by far more."""
 
 
 def _hex(values) -> list[str]:
@@ -113,6 +118,13 @@ def test_the_stored_variant_references_are_reproduced(variant) -> None:
     chosen = sorted(set(range(0, THROWS, THROWS // AGAIN))
                     | {k for k, t in enumerate(throws) if t["fast"] != stored["full"][k]["captured"]})
     for k in chosen:
-        assert _full(throws[k]) == stored["full"][k], (
+        assert _same_result(_full(throws[k]), stored["full"][k]), (
             f"{env_id} throw {k}: the full simulation no longer gives the stored result; if that is meant, "
             f"regenerate {STORED.name} (see this module's docstring)")
+
+
+def _same_result(now: dict, stored: dict) -> bool:
+    """The outcome, reason and time exactly, the final position to ``POSITION_BITS`` (m)."""
+    return (all(now[key] == stored[key] for key in ("captured", "reason", "time"))
+            and all(abs(float.fromhex(a) - float.fromhex(b)) <= POSITION_BITS
+                    for a, b in zip(now["final_position"], stored["final_position"])))
