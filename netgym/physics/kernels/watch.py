@@ -61,7 +61,8 @@ class Watch(NamedTuple):
     ball is simulated, not flown), ``grow`` (m: the box around everything but the ball grows by
     this), ``rule_depth`` (m: past the opening's plane from this depth, the capture rule may
     decide; inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go
-    to sleep), its :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box``
+    to sleep), ``far_clearance`` (m) and ``far_sleep_speed`` (m/s: the same while the ball is
+    farther than that from everything, :func:`far_from_a_slow_scene`), its :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box``
     (6,), the grown box of the last check (min x, y, z, max x, y, z)."""
 
     row: int
@@ -73,6 +74,8 @@ class Watch(NamedTuple):
     grow: float
     rule_depth: float
     sleep_speed: float
+    far_clearance: float
+    far_sleep_speed: float
     budget: Budget
     rest: RestWindow
     box: np.ndarray
@@ -137,6 +140,17 @@ def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
     return others, inside, rest, unreachable
 
 
+@kernel
+def far_from_a_slow_scene(x, n_net, radius, segments, poles, watch, others):
+    """Whether everything but the watch's ball, its largest velocity component ``others``, may
+    go to sleep though it moves faster than ``sleep_speed``: slower than ``far_sleep_speed``,
+    with the ball more than ``far_clearance`` from all of it (a net swaying after the ball left
+    it off the rim, the ball flying over it). The net then waits, its motion frozen, until the
+    ball comes near again."""
+    return others < watch.far_sleep_speed and clearance(x, n_net, watch.row, radius, segments,
+                                                        poles) > watch.far_clearance
+
+
 @inline_kernel
 def _next_chunk(watch, t, dt):
     """Steps of the chunk from ``t``: ``watch.chunk``, fewer before the deadline, none at it."""
@@ -162,7 +176,8 @@ def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, 
     :func:`~netgym.physics.kernels.stepping.advance`, from ``time`` while nothing could be decided:
     stop after the chunk at which the deadline is within half a step, the ball lies at least
     ``rule_depth`` past the opening's plane, or :func:`near_check` finds everything else
-    slower than ``sleep_speed``, the ball outside the box, at rest or out of reach. Returns
+    slower than ``sleep_speed`` (or far enough and slow enough: :func:`far_from_a_slow_scene`),
+    the ball outside the box, at rest or out of reach. Returns
     (OK or DIVERGED, the time reached), each chunk's time added as the throw adds it."""
     dt, t = settings.dt, time
     while True:
@@ -173,7 +188,8 @@ def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, 
             return DIVERGED, t
         t += n * dt
         decidable, others = _decidable(x, v, inv_mass, model, watch, t, dt)
-        if decidable or others < watch.sleep_speed:
+        if decidable or others < watch.sleep_speed or far_from_a_slow_scene(
+                x, model.n_net, model.ball_radius, model.segments, model.poles, watch, others):
             return OK, t
 
 

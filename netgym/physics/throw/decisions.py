@@ -22,7 +22,7 @@ from netgym.physics.kernels import stepping
 from netgym.physics.outcomes import Reason
 from netgym.physics.throw.clearance import can_roll_alone, flight_time
 from netgym.physics.throw.records import TUNING, ThrowContext
-from netgym.physics.kernels.watch import near_check
+from netgym.physics.kernels.watch import far_from_a_slow_scene, near_check
 
 
 def rule_decision(throw: ThrowContext, position: np.ndarray, entered: bool) -> Reason | None:
@@ -45,7 +45,9 @@ def after_flight(throw: ThrowContext) -> Reason | None:
 class Verdict(NamedTuple):
     """What :func:`after_piece` finds: the ``reason`` the throw is decided, or None; and
     whether, undecided, the scene may go to sleep (``quiet``: nothing but the ball moves any
-    more and it could fly clear for a step, or move alone for one, near nothing that moves)."""
+    more and it could fly clear for a step, or move alone for one, near nothing that moves; or
+    the rest moves slowly and the ball is far from it,
+    :func:`~netgym.physics.kernels.watch.far_from_a_slow_scene`)."""
 
     reason: Reason | None
     quiet: bool = False
@@ -69,8 +71,10 @@ def after_piece(throw: ThrowContext) -> Verdict:
     others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs.pairs, km.springs.params,
                                                  km.opening, km.poles, watch)
     reason = after_check(throw, at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
-    return Verdict(reason, reason is None and others < watch.sleep_speed
-                   and (flight_time(throw) > 0.0 or can_roll_alone(throw)))
+    m = throw.sim.model
+    return Verdict(reason, reason is None and (
+        (others < watch.sleep_speed and (flight_time(throw) > 0.0 or can_roll_alone(throw)))
+        or far_from_a_slow_scene(s.x, m.n_net, m.ball_radius, m.segments, m.poles, watch, others)))
 
 
 def after_check(throw: ThrowContext, at_rest: bool, unreachable: bool, lo: np.ndarray,

@@ -127,6 +127,7 @@ class Throw:
                                 2.0 * m.ball_radius + TUNING.rest_reach, cfg.rest_speed * TUNING.rest_window)
         return Watch(row, s.time, deadline, cfg.dt, max(1, round(CHUNK_SECONDS / cfg.dt)), TUNING.clearance,
                      about + TUNING.awake_margin, throw.rule.decision_depth(m.ball_radius), TUNING.sleep_speed,
+                     TUNING.far_clearance, TUNING.far_sleep_speed,
                      budget, rest, np.empty(6))
 
     def _until_decided(self) -> Plan:
@@ -136,8 +137,9 @@ class Throw:
         itself may decide the throw. Once it comes near something, it is stepped alone while it
         can touch nothing that moves (poles, pinned particles, the ground only: the scene sleeps
         on), else the scene wakes and is integrated chunk by chunk, with a decision after each;
-        when nothing but the ball moves any more and it could fly clear or move alone, the scene
-        sleeps again. The ball alone flies again only once it is clear of everything, where the
+        when nothing but the ball moves any more and it could fly clear or move alone, or the rest
+        moves slowly and the ball is far from it (a net swaying after the ball left it off the
+        rim), the scene sleeps again. The ball alone flies again only once it is clear of everything, where the
         compiled loop of its chunks hands back (:func:`~netgym.physics.kernels.watch.roll_watched`).
         """
         throw = self.context

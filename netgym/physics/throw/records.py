@@ -31,6 +31,8 @@ class FastPathTuning:
     air_piece: float = 0.1        # s: longest piece of a flight through air between two clearance checks
     sleep_speed: float = 5e-2     # m/s: a net (and balls in it) slower than this may stop being integrated
                                   # (half the pause's settle speed; 1 cm/s kept a jittering net awake)
+    far_clearance: float = 0.15   # m: a ball this clear of everything may fly while a net slower than
+    far_sleep_speed: float = 0.3  # m/s goes to sleep (a net swaying after a ball left it off the rim)
     line_time_tolerance: float = 1e-4  # s: a flown ball's capture-rule decision comes at most this late
     miss_filmed_after_landing: float = 0.5  # s of a missed ball's flight filmed after it first lands
     rule_filmed: float = 0.5      # s filmed on after the capture rule decided (a goal running into the net)
