@@ -1,7 +1,7 @@
 """The two contact models on the same throws (netgym/bench/accuracy/model_agreement.py): sampled
-basket throws (half random, half noisy-oracle actions), each from the settled empty net, by the
-impulse model's fast path and full simulation and by the compliant model's full simulation
-(it has no fast path); the catches, the shares of equal outcomes and the time a throw.
+basket throws (half random, half noisy-oracle actions), each from the settled empty net, by
+each model's fast path and full simulation; the catches, the shares of equal outcomes, the
+time a throw, and a step's cost of each model at the same integrator and dt.
 
 Usage::
 

@@ -118,7 +118,7 @@ class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
     | ``launch_noise`` | None | ``(speed, elevation, azimuth)`` standard deviations (m/s, degrees) of Gaussian noise on each release; ``info["aimed_velocity"]`` is the intended one |
     | ``feedback`` | False | append the previous throw's outcome and where it passed the opening to the observation |
     | ``randomize`` | None | domain randomisation: ``{scene field: (low, high)}`` drawn uniformly per episode (``info["scene_draws"]``; fields that change the spaces are refused at reset) |
-    | ``contact_model`` | scene's | ``"impulse"`` or ``"compliant"`` (Hunt-Crossley contact forces inside the integrator, which converge at its order; with ``fast=False`` only; not with ``implicit_euler``) |
+    | ``contact_model`` | scene's | ``"impulse"`` or ``"compliant"`` (Hunt-Crossley contact forces inside the integrator, which converge at its order; not with ``implicit_euler``) |
     | ``capture_rule`` | scene's | ``"held"`` (basket: in the net at rest or at the time limit; caught balls stay) or ``"line"`` (goal: the whole ball crossed the mouth inside the frame; wholly over the line beside it, out of play; the ball is then taken out) |
 
     ## Registered ids
@@ -185,9 +185,6 @@ class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
         self.launch_noise = None if launch_noise is None else LaunchNoise.parse(launch_noise)
         self.feedback = bool(feedback)
         self.sim = Simulator(config.replace(changes) if changes else config)
-        if fast and self.sim.config.simulation.contact_model != "impulse":
-            raise InvalidArgumentError(f"contact_model = {self.sim.config.simulation.contact_model!r} needs "
-                                       f"fast=False (the fast path is the impulse model's)")
         if self.wind_range is not None and self.sim.model.ball_drag == 0.0:
             raise InvalidArgumentError("wind needs air: the scene's air.density is 0 "
                                        "(pass overrides={'air.density': 1.2})")

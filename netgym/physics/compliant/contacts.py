@@ -49,6 +49,13 @@ def new_list(x, model):
                        np.empty(size, dtype=np.int64), np.zeros(size, dtype=np.int8), np.zeros(1, dtype=np.int64))
 
 
+def no_list() -> ContactList:
+    """A :class:`ContactList` with room for none: where a kernel takes one that impulse
+    contacts never fill."""
+    return ContactList(np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64),
+                       np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64))
+
+
 class Feature(NamedTuple):
     """Where a contact touches: overlap ``delta``, unit normal (nx, ny, nz) towards ``a``, the
     other side's bodies ``i``, ``j`` (-1: none, static) with weights ``wi``, ``wj`` of the point,

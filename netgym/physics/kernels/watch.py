@@ -20,6 +20,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from netgym.physics.compliant.contacts import ContactList
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_depth
 from netgym.physics.kernels.reach import Budget, out_of_reach
@@ -63,7 +64,9 @@ class Watch(NamedTuple):
     decide; inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go
     to sleep), ``far_clearance`` (m) and ``far_sleep_speed`` (m/s: the same while the ball is
     farther than that from everything, :func:`far_from_a_slow_scene`), its :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box``
-    (6,), the grown box of the last check (min x, y, z, max x, y, z)."""
+    (6,), the grown box of the last check (min x, y, z, max x, y, z), and room for the compliant
+    contacts the energy bound lists (:func:`~netgym.physics.compliant.contacts.no_list` with
+    impulse contacts)."""
 
     row: int
     launched: float
@@ -79,6 +82,7 @@ class Watch(NamedTuple):
     budget: Budget
     rest: RestWindow
     box: np.ndarray
+    contacts: ContactList
 
 
 @kernel
@@ -120,7 +124,7 @@ def at_rest(rest, x, row, time):
 
 
 @kernel
-def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
+def near_check(x, v, inv_mass, time, model, watch):
     """The check after a chunk, remembered in the watch's rest window: ``(others, inside,
     at_rest, unreachable)``, the largest velocity component of everything but the ball,
     whether the ball lies inside the box around everything else (the watch's ``box``, written
@@ -128,7 +132,7 @@ def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
     rest (:func:`at_rest`), and whether it can no longer reach the opening before its deadline
     (:func:`~netgym.physics.kernels.reach.out_of_reach`)."""
     row, box = watch.row, watch.box
-    others = survey(x, v, row, poles, box)
+    others = survey(x, v, row, model.poles, box)
     inside = True
     for c in range(3):
         box[c] = box[c] - watch.grow
@@ -136,7 +140,7 @@ def near_check(x, v, inv_mass, time, springs, params, opening, poles, watch):
         inside = inside and box[c] <= x[row, c] <= box[c + 3]
     remember(watch.rest, time, x)
     rest = at_rest(watch.rest, x, row, time)
-    unreachable = out_of_reach(x, v, inv_mass, row, springs, params, opening, watch.budget, watch.deadline - time)
+    unreachable = out_of_reach(x, v, inv_mass, row, model, watch.budget, watch.deadline - time, watch.contacts)
     return others, inside, rest, unreachable
 
 
@@ -165,8 +169,7 @@ def _decidable(x, v, inv_mass, model, watch, t, dt):
     those two cases) finds it outside the box, at rest or out of reach."""
     if watch.deadline - t < 0.5 * dt or opening_depth(model.opening, x[watch.row]) >= watch.rule_depth:
         return True, 0.0
-    others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model.springs.pairs, model.springs.params,
-                                                    model.opening, model.poles, watch)
+    others, inside, rest, unreachable = near_check(x, v, inv_mass, t, model, watch)
     return not inside or rest or unreachable, others
 
 

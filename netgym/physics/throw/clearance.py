@@ -41,10 +41,11 @@ def flight_time(throw: ThrowContext) -> float:
 def can_roll_alone(throw: ThrowContext) -> bool:
     """Whether the ball may be stepped alone for a step, everything else asleep: it can touch
     nothing that moves meanwhile, only poles, pinned particles and the ground, which the rest's
-    sleep does not change (:func:`~netgym.physics.kernels.surroundings.alone_for_a_step`)."""
+    sleep does not change (:func:`~netgym.physics.kernels.surroundings.alone_for_a_step`). Not
+    with compliant contacts: the lone ball's step is the impulse model's."""
     sim, course = throw.sim, throw.course
     s, dt = sim.state, sim.config.simulation.dt
-    return (round((course.deadline - s.time) / dt) > 0
+    return (sim.config.simulation.contact_model == "impulse" and round((course.deadline - s.time) / dt) > 0
             and surroundings.alone_for_a_step(s.x, s.v, s.inv_mass, throw.lone, throw.ball.row, dt))
 
 

@@ -68,8 +68,7 @@ def after_piece(throw: ThrowContext) -> Verdict:
     if not throw.fast:
         return Verdict(None)
     km, watch = throw.sim.kernel_model, course.watch
-    others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km.springs.pairs, km.springs.params,
-                                                 km.opening, km.poles, watch)
+    others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km, watch)
     reason = after_check(throw, at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
     m = throw.sim.model
     return Verdict(reason, reason is None and (

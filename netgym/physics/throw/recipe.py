@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from netgym.arguments import vector_argument
-from netgym.errors import ConfigError, SimulationDivergedError
+from netgym.errors import SimulationDivergedError
+from netgym.physics.compliant import contacts as compliant_contacts
 from netgym.physics.kernels import air, reach
 from netgym.physics.film import Film
 from netgym.physics.outcomes import Reason
@@ -57,10 +58,6 @@ class Throw:
                  film: Film | None = None) -> None:
         self.position = vector_argument(position, "position")  # fail on bad input before any work
         self.velocity = vector_argument(velocity, "velocity")
-        if fast and sim.config.simulation.contact_model != "impulse":
-            raise ConfigError(f"simulation.contact_model = {sim.config.simulation.contact_model!r} takes throws with "
-                              f"fast=False only: the fast path's closed-form bounces, lone-ball steps and energy "
-                              f"bound are the impulse model's")
         self.context = ThrowContext(sim, fast, sim.capture_rule, film, FreeFlight.of(sim.model),
                                     LoneBall.of(sim.kernel_model))
 
@@ -119,16 +116,17 @@ class Throw:
         throw = self.context
         sim, row = throw.sim, throw.ball.row
         s, m, km, cfg = sim.state, sim.model, sim.kernel_model, sim.config.simulation
+        compliant = cfg.contact_model == "compliant"
         budget = reach.Budget(reach.potential_without_ball(s.x, s.v, s.inv_mass, row, km.gravity, km.springs.pairs,
                                                            km.springs.params),
                               sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind), km.gravity,
-                              m.ball_radius, sim.opening.lowest_z)
+                              m.ball_radius, sim.opening.lowest_z, cfg.contact_stiffness if compliant else 0.0)
         rest = RestWindow.sized(s.x.shape[0], cfg.dt, TUNING.rest_window, TUNING.time_epsilon,
                                 2.0 * m.ball_radius + TUNING.rest_reach, cfg.rest_speed * TUNING.rest_window)
         return Watch(row, s.time, deadline, cfg.dt, max(1, round(CHUNK_SECONDS / cfg.dt)), TUNING.clearance,
                      about + TUNING.awake_margin, throw.rule.decision_depth(m.ball_radius), TUNING.sleep_speed,
-                     TUNING.far_clearance, TUNING.far_sleep_speed,
-                     budget, rest, np.empty(6))
+                     TUNING.far_clearance, TUNING.far_sleep_speed, budget, rest, np.empty(6),
+                     compliant_contacts.new_list(s.x, km) if compliant else compliant_contacts.no_list())
 
     def _until_decided(self) -> Plan:
         """Simulate the ball until its outcome is decided; returns the :class:`Reason`.

@@ -14,7 +14,12 @@ import pytest
 import netgym  # noqa: F401  (registers the ids)
 from netgym.bench.accuracy.contact_convergence import fitted_slope
 from netgym.errors import ConfigError, InvalidArgumentError
+from agents.bench.throws import sample_throws
+from netgym.bench.accuracy.fast_path import throw_each
+from netgym.bench.accuracy.model_agreement import COMPLIANT
+from netgym.physics.compliant import contacts as compliant_contacts
 from netgym.physics.compliant import law
+from netgym.physics.kernels import reach
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
 
@@ -22,6 +27,7 @@ SMALL_NET = {"simulation.contact_model": "compliant", "simulation.integrator": "
              "net.particles": [3, 3, 3]}
 BOUNCE = ([5.0, 5.0, 1.0], [1.0, 0.5, -3.0])     # onto the ground, sliding: friction acts
 STRIKE = ([0.1, 0.2, 2.4], [0.5, 0.0, -6.0])     # into the small net's bottom: particles and segments
+AGREEMENT_THROWS = 24
 
 
 def _ball_path(sim: Simulator, launch: tuple, integrator: str, dt: float, seconds: float = 0.4) -> np.ndarray:
@@ -120,16 +126,39 @@ def test_the_scene_refuses_an_unknown_contact_model_and_implicit_euler_with_the_
         Simulator("basket", {"simulation.contact_model": "compliant", "simulation.integrator": "implicit_euler"})
 
 
-def test_the_fast_path_refuses_the_compliant_model_by_name() -> None:
-    with pytest.raises(InvalidArgumentError, match="contact_model"):
-        gym.make("NetCatch-v0", contact_model="compliant")
+def test_the_energy_bound_counts_what_the_contact_springs_hold() -> None:
+    """A ball at rest pressed 6 cm into the ground holds k delta^2 / 2 = 36 J in its contact
+    spring, enough to rise past the basket's rim (3 m): the compliant bound must not call the
+    opening out of its reach; without the springs' energy (the impulse budget) it would."""
     sim = Simulator("basket", {"simulation.contact_model": "compliant"})
-    with pytest.raises(ConfigError, match="fast=False"):
-        throw(sim, [0.2, 0.1, 3.6], [0.0, 0.0, -2.0])
-    env = gym.make("NetCatch-v0", contact_model="compliant", fast=False, balls_per_episode=1)
+    sim.launch_ball([3.0, 0.0, 0.3], [0.0, 0.0, 0.0])
+    s, km, row = sim.state, sim.kernel_model, sim.model.n_net
+    s.x[row, 2] -= 0.06   # pressed in (a launch below the ground is refused)
+    reference = reach.potential_without_ball(s.x, s.v, s.inv_mass, row, km.gravity, km.springs.pairs,
+                                             km.springs.params)
+    found = {}
+    for stiffness in (sim.config.simulation.contact_stiffness, 0.0):
+        budget = reach.Budget(reference, 0.0, km.gravity, sim.model.ball_radius, sim.opening.lowest_z, stiffness)
+        found[stiffness] = reach.out_of_reach(s.x, s.v, s.inv_mass, row, km, budget, 5.0,
+                                              compliant_contacts.new_list(s.x, km))
+    assert found == {sim.config.simulation.contact_stiffness: False, 0.0: True}
+
+
+def test_the_env_takes_the_compliant_model_on_its_fast_path() -> None:
+    env = gym.make("NetCatch-v0", contact_model="compliant", balls_per_episode=1)
     env.reset(seed=0)
     _, _, terminated, _, info = env.step(env.action_space.sample())
     assert terminated and "captured" in info
+
+
+@pytest.mark.slow
+def test_the_compliant_fast_path_agrees_with_its_full_simulation() -> None:
+    """Sampled basket throws (half random, half the noisy oracle's: rim and wall hits), each from
+    the settled empty net, by the fast path and by full simulation, both compliant."""
+    throws = sample_throws("basket", AGREEMENT_THROWS, seed=3)
+    fast, full = (throw_each("basket", throws, 1, COMPLIANT, fast) for fast in (True, False))
+    assert 0 < sum(r.captured for r in full) < len(throws)
+    assert [r.captured for r in fast] == [r.captured for r in full]
 
 
 def test_the_parts_a_stiff_contact_takes_are_booked_as_substeps() -> None:
