@@ -9,6 +9,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from netgym.bench.accuracy.fast_path import Throw, throw_each
 from netgym.bench.results import read_results
 from netgym.physics.simulator import Simulator
@@ -17,13 +19,16 @@ COMPLIANT = {"simulation.contact_model": "compliant"}
 STEP_COST_CASES = (("imex_euler", 2e-3), ("rk4", 1e-3), ("symplectic_euler", 5e-4))
 """The (integrator, dt) pairs whose step the two models are timed at: the default, and the
 steps at which RK4 and symplectic Euler are run."""
+CREEP_SECONDS = 2.0
+"""Simulated seconds over which a resting ball's creep is measured."""
 
 
 def step_costs(rounds: int = 5, seconds: float = 1.0) -> dict[str, dict[str, float]]:
     """Wall time (us) of a step of each contact model at each of :data:`STEP_COST_CASES`, a ball
     resting on the basket's bottom (a contact on every step, the compliant model's worst
     case): the medians of ``rounds`` interleaved rounds of ``seconds`` simulated, and the ratio
-    compliant / impulse."""
+    compliant / impulse; and how far (mm) that ball crept over the first :data:`CREEP_SECONDS`
+    of the rounds (the first test of ``tests/physics/contacts/test_resting_contact.py``)."""
     sims = {}
     for integrator, dt in STEP_COST_CASES:
         for model in ("impulse", "compliant"):
@@ -32,18 +37,24 @@ def step_costs(rounds: int = 5, seconds: float = 1.0) -> dict[str, dict[str, flo
             sim.launch_ball([0.3, 0.2, 1.5], [0.0, 0.0, 0.0])
             sim.step(round(3.0 / dt))  # dropped, bounced and settled; compiled before the clock
             sims[(integrator, model)] = sim
+    settled = {key: sim.ball_positions[0].copy() for key, sim in sims.items()}
     times: dict[tuple[str, str], list[float]] = {key: [] for key in sims}
-    for _ in range(rounds):
+    creep = {}
+    for done in range(rounds):
         for key, sim in sims.items():
             steps = round(seconds / sim.config.simulation.dt)
             start = time.perf_counter()
             sim.step(steps)
             times[key].append((time.perf_counter() - start) / steps)
+            if key not in creep and (done + 1) * seconds >= CREEP_SECONDS - 1e-9:
+                creep[key] = 1e3 * float(np.linalg.norm(sim.ball_positions[0] - settled[key]))
     out = {}
     for integrator, dt in STEP_COST_CASES:
         impulse, compliant = (statistics.median(times[(integrator, m)]) for m in ("impulse", "compliant"))
         out[f"{integrator} {dt * 1e3:g} ms"] = {"impulse_us": 1e6 * impulse, "compliant_us": 1e6 * compliant,
-                                               "ratio": compliant / impulse}
+                                               "ratio": compliant / impulse,
+                                               "impulse_creep_mm": creep[(integrator, "impulse")],
+                                               "compliant_creep_mm": creep[(integrator, "compliant")]}
     return out
 
 
@@ -82,6 +93,8 @@ def block(path: Path) -> str:
     agreement, captured, seconds = f["agreement"], f["captured"], f["seconds_per_throw"]
     costs = "; ".join(f"{case} {c['compliant_us']:.0f} us against {c['impulse_us']:.0f} us, {c['ratio']:.2f}x"
                       for case, c in f["step_costs"].items())
+    creep = "; ".join(f"{case} {c['compliant_creep_mm']:.2f} mm (impulse {c['impulse_creep_mm']:.3f} mm)"
+                      for case, c in f["step_costs"].items())
     return (f"Outcomes of {f['throws']} sampled basket throws, each from the settled empty net: the compliant "
             f"model's full simulation caught {captured['compliant_full']}, its fast path "
             f"{captured['compliant_fast']}, the impulse model's fast path {captured['impulse_fast']} and its full "
@@ -93,5 +106,5 @@ def block(path: Path) -> str:
             f"{seconds['compliant_fast']:.3f} s by its fast path, {seconds['impulse_full']:.2f} s and "
             f"{seconds['impulse_fast']:.3f} s with the impulse model, one core. A step with a ball resting on the "
             f"basket's bottom, compliant against impulse at the same integrator and dt (medians of 5 interleaved "
-            f"rounds): {costs}. Source: `docs/results/{path.name}`, written by `{record['command']}` "
+            f"rounds): {costs}. How far that ball crept over {CREEP_SECONDS:g} s, compliant: {creep}. Source: `docs/results/{path.name}`, written by `{record['command']}` "
             f"({record['written']}, {record['machine']}).")
