@@ -5,7 +5,9 @@ One process, one numba thread. The ids run interleaved, round after round, each 
 episode seeds of its own, so that a slow spell of a shared machine falls on all of them alike;
 each id is compared with NetCatch-v0 under the same policy, as a ratio of throws per second
 measured in the same run. Only ``reset`` and ``step`` are timed (not the policy choosing its
-action), each once per call, so the tails (p99, max) are those a training loop meets.
+action), each once per call, so the tails (p99, max) are those a training loop meets. A call
+during which numba compiled a kernel (a path the warm-up episode did not take, met first in a
+timed one) is left out and counted: it times the compiler, once per machine, not the env.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from dataclasses import dataclass
 import gymnasium as gym
 import numba
 import numpy as np
+from numba.core import event
 from tqdm import tqdm
 
 import netgym
@@ -30,11 +33,29 @@ VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCat
 """The ids with a vector observation (the pixel id renders every step: a different workload)."""
 
 
+class _Compilations(event.Listener):
+    """How many numba compilations have started in this process since it was registered."""
+
+    def __init__(self) -> None:
+        self.count = 0
+
+    def on_start(self, ev: event.Event) -> None:
+        self.count += 1
+
+    def on_end(self, ev: event.Event) -> None:
+        pass
+
+
+COMPILATIONS = _Compilations()
+event.register("numba:compile", COMPILATIONS)
+
+
 @dataclass(frozen=True)
 class SpeedRow:
     """One id under one policy: ``throws`` steps of ``episodes`` episodes, their rate with the
     resets counted, p50/p99/max of a step and of a reset (ms), the capture rate, and the ratio
-    of its throws per second to NetCatch-v0's under the same policy."""
+    of its throws per second to NetCatch-v0's under the same policy; ``left_out``: the calls
+    left out because numba compiled during them."""
 
     env_id: str
     policy: str
@@ -45,6 +66,7 @@ class SpeedRow:
     reset_ms: tuple[float, float, float]
     capture_rate: float
     ratio: float
+    left_out: int = 0
 
 
 def _chooser(policy: str, env: gym.Env, seed: int) -> Callable[[np.ndarray], np.ndarray]:
@@ -66,34 +88,39 @@ class _Timing:
         self.resets: list[float] = []
         self.caught = 0
         self.episodes = 0
+        self.left_out = 0
         self.run_episodes(1, seed=10**6, timed=False)   # compiles, builds the net family; not timed
 
     def run_episodes(self, episodes: int, seed: int, timed: bool = True) -> None:
         """Run ``episodes`` episodes seeded ``seed, seed + 1, ...``, timing each call."""
         choose = _chooser(self.policy, self.env, seed)
         for episode in range(episodes):
-            start = time.perf_counter()
+            compiled, start = COMPILATIONS.count, time.perf_counter()
             obs, _ = self.env.reset(seed=seed + episode)
-            reset = time.perf_counter() - start
-            done, steps, caught = False, [], 0
+            resets = [time.perf_counter() - start] if COMPILATIONS.count == compiled else []
+            done, steps, caught, left_out = False, [], 0, 1 - len(resets)
             while not done:
                 action = choose(obs)
-                start = time.perf_counter()
+                compiled, start = COMPILATIONS.count, time.perf_counter()
                 obs, _, terminated, truncated, info = self.env.step(action)
-                steps.append(time.perf_counter() - start)
-                caught += int(info["captured"])
+                if COMPILATIONS.count == compiled:
+                    steps.append(time.perf_counter() - start)
+                    caught += int(info["captured"])
+                else:
+                    left_out += 1
                 done = terminated or truncated
             if timed:
-                self.resets.append(reset)
+                self.resets.extend(resets)
                 self.steps.extend(steps)
                 self.caught += caught
+                self.left_out += left_out
                 self.episodes += 1
 
     def row(self, base_rate: float | None) -> SpeedRow:
         """The figures of every timed call (``base_rate``: NetCatch-v0's throws/s, None for itself)."""
         rate = len(self.steps) / (sum(self.steps) + sum(self.resets))
         return SpeedRow(self.env_id, self.policy, self.episodes, len(self.steps), rate, _tails(self.steps),
-                        _tails(self.resets), self.caught / len(self.steps), rate / (base_rate or rate))
+                        _tails(self.resets), self.caught / len(self.steps), rate / (base_rate or rate), self.left_out)
 
 
 def _tails(seconds: list[float]) -> tuple[float, float, float]:

@@ -46,7 +46,9 @@ def block(path: Path) -> str:
         return f"Not measured yet: `python scripts/bench_variants.py --results {path.name}`."
     record = read_results(path)
     figures = record["figures"]
+    left_out = sum(row.get("left_out", 0) for row in figures["rows"])
     return (to_markdown(figures["rows"], figures.get("training"), figures.get("profile")) + "\n\n"
             f"{figures['rounds']} rounds of {figures['episodes_per_round']} episodes per id and policy, one process, "
-            f"one numba thread; {figures.get('profile_episodes', 0)} episodes of each profiled. Source: `docs/results/{path.name}`, written by `{record['command']}` "
+            f"one numba thread; {figures.get('profile_episodes', 0)} episodes of each profiled; {left_out} timed "
+            f"calls left out (numba compiled a kernel during them). Source: `docs/results/{path.name}`, written by `{record['command']}` "
             f"({record['written']}, {record['machine']}).")
