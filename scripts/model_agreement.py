@@ -27,9 +27,10 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--workers", type=int, default=1, help="processes")
     parser.add_argument("--results", type=Path, help="the result file (JSON)")
-    parser.add_argument("--quick", action="store_true", help="6 throws, printed, nothing written")
+    parser.add_argument("--quick", action="store_true", help="6 throws, 2 rounds of step costs; printed, not written")
     args = parser.parse_args()
-    figures = model_agreement(sample_throws("basket", 6 if args.quick else args.throws, args.seed), args.workers)
+    figures = model_agreement(sample_throws("basket", 6 if args.quick else args.throws, args.seed), args.workers,
+                              cost_rounds=2 if args.quick else 5)
     if args.quick or args.results is None:
         print(json.dumps(figures, indent=1))
         return

@@ -234,6 +234,10 @@ def test_contact_convergence_quick_writes_resumable_results(tmp_path: Path) -> N
 @pytest.mark.slow
 def test_model_agreement_quick_runs_both_contact_models_on_the_same_throws() -> None:
     figures = json.loads(_run("scripts/model_agreement.py", "--quick"))
-    assert figures["throws"] == 6 and set(figures["captured"]) == {"impulse_fast", "impulse_full", "compliant_full"}
+    assert figures["throws"] == 6
+    assert set(figures["captured"]) == {"impulse_fast", "impulse_full", "compliant_fast", "compliant_full"}
     assert figures["agreement"]["impulse fast vs impulse full"] == 1.0
+    assert 0.0 <= figures["agreement"]["compliant fast vs compliant full"] <= 1.0
     assert all(0.0 < s for s in figures["seconds_per_throw"].values())
+    for cost in figures["step_costs"].values():
+        assert cost["compliant_us"] > 0.0 and cost["impulse_us"] > 0.0 and cost["compliant_creep_mm"] >= 0.0

@@ -58,10 +58,10 @@ def step_costs(rounds: int = 5, seconds: float = 1.0) -> dict[str, dict[str, flo
     return out
 
 
-def model_agreement(throws: list[Throw], workers: int = 1) -> dict[str, Any]:
+def model_agreement(throws: list[Throw], workers: int = 1, cost_rounds: int = 5) -> dict[str, Any]:
     """Outcomes of ``throws`` by each model's fast path and full simulation: the catches of
     each, the shares of equal outcomes, the seconds a throw each took, the throws whose outcomes
-    differ between the models' full simulations, and :func:`step_costs`."""
+    differ between the models' full simulations, and :func:`step_costs` over ``cost_rounds``."""
     runs, seconds = {}, {}
     for label, overrides, fast in (("impulse_fast", None, True), ("impulse_full", None, False),
                                    ("compliant_fast", COMPLIANT, True), ("compliant_full", COMPLIANT, False)):
@@ -80,7 +80,7 @@ def model_agreement(throws: list[Throw], workers: int = 1) -> dict[str, Any]:
                           "compliant fast vs compliant full": agree("compliant_fast", "compliant_full")},
             "seconds_per_throw": seconds,
             "differ": [i for i, (a, b) in enumerate(zip(runs["compliant_full"], runs["impulse_full"])) if a != b],
-            "step_costs": step_costs()}
+            "step_costs": step_costs(cost_rounds)}
 
 
 def block(path: Path) -> str:
@@ -106,5 +106,6 @@ def block(path: Path) -> str:
             f"{seconds['compliant_fast']:.3f} s by its fast path, {seconds['impulse_full']:.2f} s and "
             f"{seconds['impulse_fast']:.3f} s with the impulse model, one core. A step with a ball resting on the "
             f"basket's bottom, compliant against impulse at the same integrator and dt (medians of 5 interleaved "
-            f"rounds): {costs}. How far that ball crept over {CREEP_SECONDS:g} s, compliant: {creep}. Source: `docs/results/{path.name}`, written by `{record['command']}` "
+            f"rounds): {costs}. How far that ball crept over {CREEP_SECONDS:g} s, compliant: {creep}. "
+            f"Source: `docs/results/{path.name}`, written by `{record['command']}` "
             f"({record['written']}, {record['machine']}).")

@@ -63,10 +63,11 @@ class Watch(NamedTuple):
     this), ``rule_depth`` (m: past the opening's plane from this depth, the capture rule may
     decide; inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go
     to sleep), ``far_clearance`` (m) and ``far_sleep_speed`` (m/s: the same while the ball is
-    farther than that from everything, :func:`far_from_a_slow_scene`), its :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box``
-    (6,), the grown box of the last check (min x, y, z, max x, y, z), and room for the compliant
-    contacts the energy bound lists (:func:`~netgym.physics.compliant.contacts.no_list` with
-    impulse contacts)."""
+    farther than that from everything, :func:`far_from_a_slow_scene`), its
+    :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box`` (6,), the
+    grown box of the last check (min x, y, z, max x, y, z), and room for the compliant contacts
+    the energy bound lists (:func:`~netgym.physics.compliant.contacts.no_list` with impulse
+    contacts)."""
 
     row: int
     launched: float
@@ -149,8 +150,8 @@ def far_from_a_slow_scene(x, n_net, radius, segments, poles, watch, others):
     """Whether everything but the watch's ball, its largest velocity component ``others``, may
     go to sleep though it moves faster than ``sleep_speed``: slower than ``far_sleep_speed``,
     with the ball more than ``far_clearance`` from all of it (a net swaying after the ball left
-    it off the rim, the ball flying over it). The net then waits, its motion frozen, until the
-    ball comes near again."""
+    it off the rim, the ball flying over it). The net then sleeps as a still one does (its
+    velocities zeroed) until the ball comes near again."""
     return others < watch.far_sleep_speed and clearance(x, n_net, watch.row, radius, segments,
                                                         poles) > watch.far_clearance
 
