@@ -6,6 +6,8 @@ delta')`` (:mod:`~netgym.physics.compliant.law`), with Coulomb friction regulari
 speed; the balls meet the net's particles and, with a weight that vanishes at their ends, the
 interiors of its structural segments (:mod:`~netgym.physics.compliant.contacts`). The forces
 are Lipschitz in the state and smooth between events (a contact's onset, its separation, its
-damper's clamp), which RK4 locates inside its steps, so that it converges at its order through
-contact (:mod:`~netgym.physics.compliant.step`).
+damper's clamp, a pole contact's move between its caps and its side), which RK4 locates
+inside its steps, so that it converges at its order through contact
+(:mod:`~netgym.physics.compliant.step`); stiff contacts split a substep into parts
+(:mod:`~netgym.physics.compliant.split`).
 """

@@ -11,6 +11,10 @@ A contact's mode is OFF (no overlap), ON (overlap, the damper pushing or idle) o
 (overlap, the damper would pull: no normal force). Within a step of RK4 the modes of its start
 are frozen and ON contacts take the law's smooth continuation
 (:func:`~netgym.physics.compliant.law.free_normal_force`); the step is cut where a mode changes.
+So is a pole contact's region: the closest point of a capsule's axis lies on its start cap, its
+side or its end cap (the axis parameter below 0, within [0, 1], above 1); the distance is only
+once differentiable across them, so a step freezes the region of its start (the side's distance
+to the whole line, a cap's to its end point) and is cut where the parameter crosses 0 or 1.
 """
 
 from __future__ import annotations
@@ -25,18 +29,21 @@ from netgym.physics.kernels.jit import inline_kernel, kernel
 
 PARTICLE, SEGMENT, POLE, BALL, GROUND, NET_GROUND = 0, 1, 2, 3, 4, 5
 OFF, ON, CLAMPED = 0, 1, 2
-LIVE = -1   # no frozen mode: the force of the mode the state is in
+START_CAP, SIDE, END_CAP = 0, 1, 2   # a pole contact's region
+LIVE = -1   # no frozen mode or region: those the state is in
 
 
 class ContactList(NamedTuple):
     """Contacts that may act within a step: ``kind`` (one of PARTICLE .. NET_GROUND), body ``a``,
     the other side ``b`` (a particle or ball row, a segment or pole index, -1 for the ground),
-    their frozen ``mode`` and ``count`` (1,), the contacts in use."""
+    their frozen ``mode`` and ``region`` (a pole's, LIVE elsewhere and outside RK4's steps) and
+    ``count`` (1,), the contacts in use."""
 
     kind: np.ndarray
     a: np.ndarray
     b: np.ndarray
     mode: np.ndarray
+    region: np.ndarray
     count: np.ndarray
 
 
@@ -46,14 +53,15 @@ def new_list(x, model):
     n_balls = x.shape[0] - model.n_net
     size = n_balls * (model.n_net + model.segments.shape[0] + model.poles.radius.shape[0] + n_balls + 1) + model.n_net
     return ContactList(np.empty(size, dtype=np.int64), np.empty(size, dtype=np.int64),
-                       np.empty(size, dtype=np.int64), np.zeros(size, dtype=np.int8), np.zeros(1, dtype=np.int64))
+                       np.empty(size, dtype=np.int64), np.zeros(size, dtype=np.int8),
+                       np.full(size, LIVE, dtype=np.int8), np.zeros(1, dtype=np.int64))
 
 
 def no_list() -> ContactList:
     """A :class:`ContactList` with room for none: where a kernel takes one that impulse
     contacts never fill."""
     return ContactList(np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64),
-                       np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64))
+                       np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64))
 
 
 class Feature(NamedTuple):
@@ -89,8 +97,9 @@ def _towards(dx, dy, dz, reach, i, wi, j, wj, weight, slope, s, ex, ey, ez, l2):
 
 
 @kernel
-def feature(x, model, kind, a, b):
-    """The :class:`Feature` of the contact (``kind``, ``a``, ``b``) in the positions ``x``."""
+def feature(x, model, kind, a, b, region=LIVE):
+    """The :class:`Feature` of the contact (``kind``, ``a``, ``b``) in the positions ``x``; a
+    pole's in its frozen ``region`` (its continuation past it), or in the one it is in (LIVE)."""
     radius = model.ball_radius
     xa, ya, za = x[a, 0], x[a, 1], x[a, 2]
     if kind == GROUND or kind == NET_GROUND:
@@ -104,7 +113,11 @@ def feature(x, model, kind, a, b):
         poles = model.poles
         px, py, pz = poles.start[b, 0], poles.start[b, 1], poles.start[b, 2]
         ex, ey, ez = poles.end[b, 0] - px, poles.end[b, 1] - py, poles.end[b, 2] - pz
-        t = min(max(((xa - px) * ex + (ya - py) * ey + (za - pz) * ez) / (ex * ex + ey * ey + ez * ez), 0.0), 1.0)
+        t = pole_parameter(x, model, a, b)
+        if region == LIVE:
+            t = min(max(t, 0.0), 1.0)
+        elif region != SIDE:
+            t = 0.0 if region == START_CAP else 1.0
         return _towards(xa - px - t * ex, ya - py - t * ey, za - pz - t * ez, radius + poles.radius[b], -1, 0.0, -1,
                         0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
     i, j = np.int64(model.segments[b, 0]), np.int64(model.segments[b, 1])
@@ -114,6 +127,32 @@ def feature(x, model, kind, a, b):
     weight, slope = law.segment_weight(s)
     return _towards(xa - x[i, 0] - s * ex, ya - x[i, 1] - s * ey, za - x[i, 2] - s * ez, radius, i, 1.0 - s, j, s,
                     weight, slope, s, ex, ey, ez, l2)
+
+
+@inline_kernel
+def pole_parameter(x, model, a, b):
+    """Where the body ``a`` projects onto pole ``b``'s axis: 0 at its start, 1 at its end."""
+    poles = model.poles
+    px, py, pz = poles.start[b, 0], poles.start[b, 1], poles.start[b, 2]
+    ex, ey, ez = poles.end[b, 0] - px, poles.end[b, 1] - py, poles.end[b, 2] - pz
+    return ((x[a, 0] - px) * ex + (x[a, 1] - py) * ey + (x[a, 2] - pz) * ez) / (ex * ex + ey * ey + ez * ez)
+
+
+@inline_kernel
+def region_of(parameter):
+    """The region of a pole contact whose axis parameter is ``parameter``."""
+    return START_CAP if parameter < 0.0 else (END_CAP if parameter > 1.0 else SIDE)
+
+
+@inline_kernel
+def region_value(region, parameter):
+    """The event function of a pole contact frozen in ``region``: positive while its axis
+    parameter stays in it, zero where it leaves."""
+    if region == START_CAP:
+        return -parameter
+    if region == END_CAP:
+        return parameter - 1.0
+    return min(parameter, 1.0 - parameter)
 
 
 @inline_kernel
@@ -183,11 +222,12 @@ def mode_of(delta, rate, damping):
 
 @kernel
 def add_forces(x, v, model, contacts, stiffness, damping, frozen, f):
-    """Add every listed contact's force to ``f`` (n, 3): in its frozen mode if ``frozen`` (ON
-    contacts by the law's continuation), else in the mode of the state. ``damping``: by kind."""
+    """Add every listed contact's force to ``f`` (n, 3): in its frozen mode and region if
+    ``frozen`` (ON contacts by the law's continuation), else in those of the state. ``damping``:
+    by kind."""
     for c in range(contacts.count[0]):
         kind, a = contacts.kind[c], contacts.a[c]
-        ft = feature(x, model, kind, a, contacts.b[c])
+        ft = feature(x, model, kind, a, contacts.b[c], contacts.region[c] if frozen else LIVE)
         ux, uy, uz, closing = approach(v, a, ft)
         d = damping[kind]
         mode = contacts.mode[c] if frozen else mode_of(ft.delta, closing, d)
@@ -220,17 +260,19 @@ def segment_slope_force(f, x, a, ft, stiffness):
 
 
 @kernel
-def event_values(x, v, model, contacts, damping, touch, on, rate):
-    """Each listed contact's event functions in the state: its overlap (``touch``) and
-    ``min(overlap, 1 + d rate)`` (``on``): OFF where touch <= 0, ON where on > 0, else CLAMPED;
-    and the overlap's ``rate`` of change (m/s)."""
+def event_values(x, v, model, contacts, damping, touch, on, rate, side):
+    """Each listed contact's event functions in the state, in its frozen region: its overlap
+    (``touch``) and ``min(overlap, 1 + d rate)`` (``on``): OFF where touch <= 0, ON where on > 0,
+    else CLAMPED; the overlap's ``rate`` of change (m/s); and a pole's axis parameter (``side``,
+    0.5 for the other kinds)."""
     for c in range(contacts.count[0]):
-        kind, a = contacts.kind[c], contacts.a[c]
-        ft = feature(x, model, kind, a, contacts.b[c])
+        kind, a, b = contacts.kind[c], contacts.a[c], contacts.b[c]
+        ft = feature(x, model, kind, a, b, contacts.region[c])
         ux, uy, uz, closing = approach(v, a, ft)
         touch[c] = ft.delta
         on[c] = min(ft.delta, 1.0 + damping[kind] * closing)
         rate[c] = closing
+        side[c] = pole_parameter(x, model, a, b) if kind == POLE else 0.5
 
 
 @kernel
@@ -238,6 +280,15 @@ def modes_from(touch, on, count, mode):
     """Write into ``mode`` the mode each of ``count`` contacts is in, from its event values."""
     for c in range(count):
         mode[c] = OFF if touch[c] <= 0.0 else (ON if on[c] > 0.0 else CLAMPED)
+
+
+@kernel
+def regions_from(side, contacts, mode, region):
+    """Write into ``region`` the region each listed pole contact in ``mode`` other than OFF is
+    in, from its axis parameter ``side``; LIVE for the rest (an OFF contact's onset is found
+    on its true distance)."""
+    for c in range(contacts.count[0]):
+        region[c] = region_of(side[c]) if contacts.kind[c] == POLE and mode[c] != OFF else LIVE
 
 
 @kernel
@@ -252,58 +303,10 @@ def potential(x, model, contacts, stiffness):
 
 
 @inline_kernel
-def _other_bodies(model, kind, b):
-    """The bodies on a contact's other side (-1: none, static)."""
-    if kind == PARTICLE or kind == BALL:
-        return b, np.int64(-1)
-    if kind == SEGMENT:
-        return np.int64(model.segments[b, 0]), np.int64(model.segments[b, 1])
-    return np.int64(-1), np.int64(-1)
-
-
-@inline_kernel
-def _load(load, k, share):
-    """Add ``share`` to ``load[k]`` if ``k`` is a body."""
-    if k >= 0:
-        load[k] += share
-
-
-@kernel
-def frequency_bound(x, inv_mass, model, contacts, stiffness, load):
-    """A bound (rad/s) on the highest frequency the listed contacts' springs give the bodies, as
-    if every listed contact touched, at its penalty's weight now: block Gershgorin on
-    ``M^-1/2 K M^-1/2``, where a contact adds ``k w g g^T`` along its normal (``g``: 1 on ``a``,
-    minus the point's weights on its bodies), so that body ``b`` meets at most
-    ``k w |g_b| sqrt(w_b) sum_b' |g_b'| sqrt(w_b')`` from it (``w``: inverse masses). ``load``:
-    (n,) scratch."""
-    count = contacts.count[0]
-    for c in range(count):
-        i, j = _other_bodies(model, contacts.kind[c], contacts.b[c])
-        for k in (contacts.a[c], i, j):
-            if k >= 0:
-                load[k] = 0.0
-    top = 0.0
-    for c in range(count):
-        a = contacts.a[c]
-        ft = feature(x, model, contacts.kind[c], a, contacts.b[c])
-        ra = math.sqrt(inv_mass[a])
-        ri = ft.wi * math.sqrt(inv_mass[ft.i]) if ft.i >= 0 else 0.0
-        rj = ft.wj * math.sqrt(inv_mass[ft.j]) if ft.j >= 0 else 0.0
-        scale = ft.weight * (ra + ri + rj)
-        _load(load, a, scale * ra)
-        _load(load, ft.i, scale * ri)
-        _load(load, ft.j, scale * rj)
-    for c in range(count):
-        i, j = _other_bodies(model, contacts.kind[c], contacts.b[c])
-        top = max(top, load[contacts.a[c]], load[i] if i >= 0 else 0.0, load[j] if j >= 0 else 0.0)
-    return math.sqrt(stiffness * top)
-
-
-@inline_kernel
 def _add(contacts, kind, a, b):
     """List the contact (``kind``, ``a``, ``b``)."""
     c = contacts.count[0]
-    contacts.kind[c], contacts.a[c], contacts.b[c] = kind, a, b
+    contacts.kind[c], contacts.a[c], contacts.b[c], contacts.region[c] = kind, a, b, LIVE
     contacts.count[0] = c + 1
 
 

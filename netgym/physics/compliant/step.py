@@ -13,7 +13,7 @@ contacts' (:mod:`~netgym.physics.compliant.contacts`), by the integrator the set
 
 Contact springs are stiff: while any contact is listed, a substep is split further so that
 ``h omega <= 1``, ``omega`` a bound on the highest frequency the listed contacts' springs give
-the bodies (:func:`~netgym.physics.compliant.contacts.frequency_bound`); ``<= 1.5`` for IMEX
+the bodies (:func:`~netgym.physics.compliant.split.frequency_bound`); ``<= 1.5`` for IMEX
 Euler, whose explicit part treats those springs by symplectic Euler (stable below 2) and
 their dampers implicitly.
 """
@@ -29,7 +29,7 @@ from numba.extending import overload
 
 from netgym.kinds import Integrator
 from netgym.physics.compliant import contacts as cl
-from netgym.physics.compliant import law
+from netgym.physics.compliant import law, split
 from netgym.physics.kernels.air import _acceleration as air_acceleration
 from netgym.physics.kernels.forces import accelerations
 from netgym.physics.kernels.integrators import (euler_update, rk4_accumulate, rk4_combine, rk4_stage_state,
@@ -40,8 +40,6 @@ from netgym.physics.kernels.rows import copy_rows
 MAX_EVENTS = 256          # events located in one step at most; later ones are stepped over
 LOCATE_ITERATIONS = 100   # trial steps at most per event
 LOCATE_TOLERANCE = 1e-13  # of the step: an event's bracket narrower than this is located
-SPLIT_LIMIT = 1.0        # h omega at most, omega the contacts' highest frequency (bounded)
-IMEX_SPLIT_LIMIT = 1.5   # IMEX Euler's contact springs: symplectic Euler, stable below 2
 
 
 class Work(NamedTuple):
@@ -49,7 +47,8 @@ class Work(NamedTuple):
     and a trial (``touch0``, ``on0`` ...), the trial's modes, the changed contacts, and (n, 3)
     rows: RK4's stages and the states of the event search; ``events``: the events located and
     the brief contacts (grazes) among them, counted; ``damping`` by contact kind; ``load``: (n,)
-    scratch of the split's frequency bound."""
+    scratch of the split's frequency bound; the pole contacts' axis parameters at the start and
+    the end or a trial (``side0``, ``side1``) and the regions of the latter."""
 
     contacts: cl.ContactList
     touch0: np.ndarray
@@ -64,6 +63,9 @@ class Work(NamedTuple):
     events: np.ndarray
     damping: np.ndarray
     load: np.ndarray
+    side0: np.ndarray
+    side1: np.ndarray
+    regions: np.ndarray
 
 
 @kernel
@@ -74,7 +76,7 @@ def new_work(x, model):
     return Work(contacts, np.empty(size), np.empty(size), np.empty(size), np.empty(size), np.empty(size),
                 np.empty(size), np.empty(size, dtype=np.int8), np.empty(size, dtype=np.int64),
                 np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model),
-                np.zeros(x.shape[0]))
+                np.zeros(x.shape[0]), np.empty(size), np.empty(size), np.empty(size, dtype=np.int8))
 
 
 @kernel
@@ -118,15 +120,16 @@ def _rk4(x0, v0, inv_mass, model, net_gravity, h, work, stiffness, damping, x1, 
 
 @kernel
 def _changes(x, v, model, work, damping):
-    """Event values of the listed contacts in (x, v) into ``touch1``, ``on1``, their modes into
-    ``modes``, and the contacts whose mode differs from the frozen one into ``changed``; returns
-    how many did."""
+    """Event values of the listed contacts in (x, v) into ``touch1``, ``on1``, ``side1``, their
+    modes and regions into ``modes`` and ``regions``, and the contacts whose mode or region
+    differs from the frozen one into ``changed``; returns how many did."""
     contacts, count = work.contacts, work.contacts.count[0]
-    cl.event_values(x, v, model, contacts, damping, work.touch1, work.on1, work.rate1)
+    cl.event_values(x, v, model, contacts, damping, work.touch1, work.on1, work.rate1, work.side1)
     cl.modes_from(work.touch1, work.on1, count, work.modes)
+    cl.regions_from(work.side1, contacts, work.modes, work.regions)
     n = 0
     for c in range(count):
-        if work.modes[c] != contacts.mode[c]:
+        if work.modes[c] != contacts.mode[c] or work.regions[c] != contacts.region[c]:
             work.changed[n] = c
             n += 1
     return n
@@ -135,8 +138,9 @@ def _changes(x, v, model, work, damping):
 @inline_kernel
 def _crossing(work, n_changed, end):
     """The least of the changed contacts' event functions, each signed to be positive at the
-    step's start (values of the start in ``touch0``, ``on0``); of the state whose values are in
-    ``touch1``, ``on1`` if ``end``, of the start otherwise. Negative: some mode changed."""
+    step's start (values of the start in ``touch0``, ``on0``, ``side0``); of the state whose
+    values are in ``touch1``, ``on1``, ``side1`` if ``end``, of the start otherwise. Negative:
+    some mode or region changed."""
     least = math.inf
     for t in range(n_changed):
         c = work.changed[t]
@@ -146,6 +150,11 @@ def _crossing(work, n_changed, end):
         start = work.on0[c] if by_on else work.touch0[c]
         value = (work.on1[c] if by_on else work.touch1[c]) if end else start
         least = min(least, value if start > 0.0 else -value)
+        region = work.contacts.region[c]
+        if region != cl.LIVE:  # a pole's frozen region: positive while its parameter stays in it
+            start = cl.region_value(region, work.side0[c])
+            value = cl.region_value(region, work.side1[c]) if end else start
+            least = min(least, value if start > 0.0 else -value)
     return least
 
 
@@ -180,6 +189,17 @@ def _graze(work, count, h):
 
 
 @kernel
+def _freeze(x, v, model, work, damping):
+    """Freeze the listed contacts' modes and pole regions at (x, v), their event values there
+    (in the regions the state is in) into ``touch0``, ``on0``, ``rate0``, ``side0``."""
+    contacts, count = work.contacts, work.contacts.count[0]
+    contacts.region[:count] = cl.LIVE
+    cl.event_values(x, v, model, contacts, damping, work.touch0, work.on0, work.rate0, work.side0)
+    cl.modes_from(work.touch0, work.on0, count, contacts.mode)
+    cl.regions_from(work.side0, contacts, contacts.mode, contacts.region)
+
+
+@kernel
 def _rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping):
     """RK4 over ``h`` in place, each change of a contact's mode located (see the module)."""
     rows = work.rows
@@ -187,8 +207,7 @@ def _rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping
     contacts, count = work.contacts, work.contacts.count[0]
     copy_rows(x0, x)
     copy_rows(v0, v)
-    cl.event_values(x0, v0, model, contacts, damping, work.touch0, work.on0, work.rate0)
-    cl.modes_from(work.touch0, work.on0, count, contacts.mode)
+    _freeze(x0, v0, model, work, damping)
     left = h
     for _event in range(MAX_EVENTS + 1):
         _rk4(x0, v0, inv_mass, model, net_gravity, left, work, stiffness, damping, x1, v1)
@@ -223,7 +242,7 @@ def _rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping
                 theta = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
             theta = min(max(theta, lo + 0.5 * LOCATE_TOLERANCE), hi - 0.5 * LOCATE_TOLERANCE)
             _rk4(x0, v0, inv_mass, model, net_gravity, theta * left, work, stiffness, damping, xlo, vlo)
-            cl.event_values(xlo, vlo, model, contacts, damping, work.touch1, work.on1, work.rate1)
+            cl.event_values(xlo, vlo, model, contacts, damping, work.touch1, work.on1, work.rate1, work.side1)
             value = _crossing(work, n_changed, True)
             if value >= 0.0:  # not past the event: an overlap of exactly 0 still leaves the mode
                 lo, f_lo = theta, value
@@ -239,11 +258,10 @@ def _rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping
                 width, stale = hi - lo, 0
             else:
                 stale += 1
-        # just past the earliest event: its modes frozen from here
+        # just past the earliest event: its modes and regions frozen from here
         copy_rows(x0, x1)
         copy_rows(v0, v1)
-        cl.event_values(x0, v0, model, contacts, damping, work.touch0, work.on0, work.rate0)
-        cl.modes_from(work.touch0, work.on0, count, contacts.mode)
+        _freeze(x0, v0, model, work, damping)
         left *= 1.0 - hi
     copy_rows(x, x1)
     copy_rows(v, v1)
@@ -326,15 +344,6 @@ def _imex(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping, scrat
 
 
 @kernel
-def _inner_steps(x, inv_mass, model, h, stiffness, work, limit):
-    """Parts of ``h`` the contacts' springs need (see the module): 1 with none listed."""
-    if work.contacts.count[0] == 0:
-        return 1
-    omega = cl.frequency_bound(x, inv_mass, model, work.contacts, stiffness, work.load)
-    return max(1, int(math.ceil(h * omega / limit)))
-
-
-@kernel
 def _margin(v, h):
     """How much closer two bodies may come within ``h``: twice the two fastest speeds' sum over
     it, and a centimetre."""
@@ -364,12 +373,12 @@ def _compliant_step(settings, x, v, inv_mass, model, net_gravity, h, scratch, wo
     if integrator == Integrator.IMPLICIT_EULER or integrator is None:
         raise NumbaTypeError(f"the compliant contact model has no step for {integrator}")
 
-    limit = IMEX_SPLIT_LIMIT if integrator == Integrator.IMEX_EULER else SPLIT_LIMIT
+    limit = split.IMEX_SPLIT_LIMIT if integrator == Integrator.IMEX_EULER else split.SPLIT_LIMIT
 
     def step(settings, x, v, inv_mass, model, net_gravity, h, scratch, work):
         stiffness, damping = settings.contact_stiffness, work.damping
         cl.gather(x, model, _margin(v, h), work.contacts)
-        parts = _inner_steps(x, inv_mass, model, h, stiffness, work, limit)
+        parts = split.parts(x, inv_mass, model, h, stiffness, work.contacts, work.load, limit)
         part = h / parts
         for p in range(parts):
             if p > 0:
