@@ -1,11 +1,11 @@
 """A substep of the compliant model: every body's motion under the smooth forces and the
 contacts' (:mod:`~netgym.physics.compliant.contacts`), by the integrator the settings are made for.
 
-- RK4 freezes the contacts' modes at a step's start and integrates the smooth system they
-  give; where the step's end finds a mode changed, it finds the earliest instant a changed
-  contact's event function crosses zero (Illinois' regula falsi on RK4 steps of a fraction of
-  the step, bisecting where it stalls), steps to just past it, takes the modes there and goes
-  on. Between events the forces are smooth, so RK4 keeps its fourth order through contact.
+- RK4 freezes the contacts' modes (and touching pole contacts' regions) at a step's start and
+  integrates the smooth system they give; where the step's end finds a mode or region
+  changed, it finds the earliest instant a changed contact's event function crosses zero
+  (Illinois' regula falsi on RK4 steps of a fraction of the step, bisecting where it stalls),
+  steps to just past it, takes the modes there and goes on. Between events the forces are smooth, so RK4 keeps its fourth order through contact.
 - Explicit and symplectic Euler take the forces of the mode the state is in.
 - IMEX Euler takes the contacts' springs explicitly and their dampers and friction implicitly
   (each contact's normal and then tangential velocity solved by backward Euler, in list order),
@@ -201,7 +201,7 @@ def _freeze(x, v, model, work, damping):
 
 @kernel
 def _rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness, damping):
-    """RK4 over ``h`` in place, each change of a contact's mode located (see the module)."""
+    """RK4 over ``h`` in place, each change of a contact's mode or region located (see the module)."""
     rows = work.rows
     x0, v0, x1, v1, xlo, vlo = rows[6], rows[7], rows[8], rows[9], rows[10], rows[11]
     contacts, count = work.contacts, work.contacts.count[0]
