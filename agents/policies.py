@@ -33,8 +33,10 @@ its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRET
 task has none that learned."""
 
 
-SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", "TQC")
-"""The algorithms a saved model may come from: Stable-Baselines3's, and sb3-contrib's TQC."""
+SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", "TQC", "RecurrentPPO")
+"""The algorithms a saved model may come from: Stable-Baselines3's, and sb3-contrib's TQC and
+RecurrentPPO (:data:`CONTRIB_ALGORITHMS`)."""
+CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")
 TRAIN_EXTRA = 'Stable-Baselines3 and torch: pip install torch==2.13.0 && pip install -e ".[train]"'
 """What a saved model or training needs beyond the environment, and how to install it."""
 
@@ -57,16 +59,18 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str | None =
         return RandomAgent(0)
     if is_rllib_checkpoint(name):
         return RLlibPolicy(name)
-    if algorithm is not None and algorithm.upper() not in SB3_ALGORITHMS:
+    by_name = {known.upper(): known for known in SB3_ALGORITHMS}
+    if algorithm is not None and algorithm.upper() not in by_name:
         raise InvalidArgumentError(f"algorithm = {algorithm!r} is not one of {list(SB3_ALGORITHMS)}")
     if not Path(name).is_file():
         raise FileNotFoundError(f"policy {str(name)!r} is neither 'oracle', 'random', a saved model file nor an RLlib "
                                 f"checkpoint folder")
-    algorithm = (algorithm or saved_algorithm(name)).upper()
+    algorithm = by_name[(algorithm or saved_algorithm(name)).upper()]
+    contrib = algorithm in CONTRIB_ALGORITHMS
     try:
-        package = importlib.import_module("sb3_contrib" if algorithm == "TQC" else "stable_baselines3")
+        package = importlib.import_module("sb3_contrib" if contrib else "stable_baselines3")
     except ImportError as missing:
-        extra = 'sb3-contrib: pip install -e ".[baselines]"' if algorithm == "TQC" else TRAIN_EXTRA
+        extra = 'sb3-contrib: pip install -e ".[baselines]"' if contrib else TRAIN_EXTRA
         raise ImportError(f"loading the saved model {str(name)!r} needs {extra}") from missing
     return getattr(package, algorithm).load(str(name), device="cpu")
 

@@ -21,6 +21,7 @@ ALGORITHMS: dict[str, tuple[str, str]] = {
     "sac": ("stable_baselines3", "SAC"),
     "td3": ("stable_baselines3", "TD3"),
     "tqc": ("sb3_contrib", "TQC"),
+    "rppo": ("sb3_contrib", "RecurrentPPO"),
     "ppo_cnn": ("stable_baselines3", "PPO"),
 }
 """Algorithm name (its yml's name) -> (module, class) of its implementation."""

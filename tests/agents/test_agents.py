@@ -213,3 +213,23 @@ def test_training_progress_ends_where_the_budget_or_the_step_cap_ends_the_run() 
     assert progress.bar.total == 200_000
     progress.on_training_end()
     assert progress.bar.total == progress.bar.n == 150_000 and "150k/150k" in stream.getvalue()
+
+
+def test_a_recurrent_ppo_model_loads_by_the_name_it_was_saved_with_and_acts_with_its_memory(tmp_path: Path) -> None:
+    """sb3-contrib's RecurrentPPO (the baselines' ``rppo``): saved with its env recorded, loaded
+    with no other argument, and evaluated with its LSTM state carried through each episode."""
+    from sb3_contrib import RecurrentPPO
+    from stable_baselines3.common.env_util import make_vec_env
+
+    from agents.model_env import record_env
+
+    env = make_vec_env("NetCatchWindy-v0", n_envs=2, seed=0)
+    model = RecurrentPPO("MlpLstmPolicy", env, n_steps=8, batch_size=16, seed=0, device="cpu",
+                         policy_kwargs={"lstm_hidden_size": 8})
+    record_env(model, "NetCatchWindy-v0")
+    model.learn(16)
+    model.save(tmp_path / "rppo.zip")
+    env_id, policy = policy_in_env(tmp_path / "rppo.zip")
+    assert env_id == "NetCatchWindy-v0" and type(policy).__name__ == "RecurrentPPO"
+    rate = evaluate(policy, episodes=2, seed=0, env_id=env_id)
+    assert rate.throws == 10 and len(rate.by_throw) == 5
