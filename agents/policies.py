@@ -27,7 +27,7 @@ SHIPPED_BASELINES = {"sac_goal.zip": "sac/NetCatchGoal-v0/seed_0",
                      "sac_noisy.zip": "sac/NetCatchNoisy-v0/seed_0",
                      "tqc_windy.zip": "tqc/NetCatchWindy-v0/seed_5",
                      "ppo_longepisode.zip": "ppo/NetCatchLongEpisode-v0/seed_4",
-                     "sac_randomized_v1.zip": "sac/NetCatchRandomized-v1/seed_3"}
+                     "rppo_randomized_v1.zip": "rppo/NetCatchRandomized-v1/seed_0"}
 """The baselines' models shipped in ``agents/pretrained/``: each file's run (algorithm/env id/seed,
 its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRETRAINED`; the pixel
 task has none that learned."""

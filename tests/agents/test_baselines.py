@@ -284,7 +284,7 @@ def test_every_shipped_baseline_model_is_its_runs_algorithm_on_its_runs_task() -
         algorithm, env_id, seed = run.split("/")
         path = ROOT / "agents" / "pretrained" / name
         assert path.is_file(), name
-        assert saved_algorithm(path) == algorithm.upper(), name
+        assert saved_algorithm(path) == ALGORITHMS[algorithm][1], name
         assert policy_in_env(path)[0] == env_id, name
         assert read_results(ROOT / "docs" / "results" / "baselines" / f"{run}.json")["figures"]["seed"] == int(seed[5:])
 
