@@ -5,7 +5,8 @@ contacts' (:mod:`~netgym.physics.compliant.contacts`), by the integrator the set
   integrates the smooth system they give; where the step's end finds a mode or region
   changed, it finds the earliest instant a changed contact's event function crosses zero
   (Illinois' regula falsi on RK4 steps of a fraction of the step, bisecting where it stalls),
-  steps to just past it, takes the modes there and goes on. Between events the forces are smooth, so RK4 keeps its fourth order through contact.
+  steps to just past it, takes the modes there and goes on. Between events the forces are
+  smooth, so RK4 keeps its fourth order through contact.
 - Explicit and symplectic Euler take the forces of the mode the state is in.
 - IMEX Euler takes the contacts' springs explicitly and their dampers and friction implicitly
   (each contact's normal and then tangential velocity solved by backward Euler, in list order),

@@ -137,8 +137,9 @@ class Throw:
         on), else the scene wakes and is integrated chunk by chunk, with a decision after each;
         when nothing but the ball moves any more and it could fly clear or move alone, or the rest
         moves slowly and the ball is far from it (a net swaying after the ball left it off the
-        rim), the scene sleeps again. The ball alone flies again only once it is clear of everything, where the
-        compiled loop of its chunks hands back (:func:`~netgym.physics.kernels.watch.roll_watched`).
+        rim), the scene sleeps again. The ball alone flies again only once it is clear of
+        everything, where the compiled loop of its chunks hands back
+        (:func:`~netgym.physics.kernels.watch.roll_watched`).
         """
         throw = self.context
         sim = throw.sim
