@@ -48,9 +48,10 @@ class Workspace:
         return array
 
     def scratch(self, state: State, model: KernelModel) -> Scratch:
-        """Integrator scratch for ``state``'s bodies and ``model``'s springs."""
+        """Integrator scratch for ``state``'s bodies and ``model``'s springs, with its anchors."""
         work, coef, coef_dt = Scratch.shapes(state.x.shape[0], model.springs.pairs.shape[0])
-        return Scratch(self.array("work", work), self.array("coef", coef), self.array("coef_dt", coef_dt))
+        return Scratch(self.array("work", work), self.array("coef", coef), self.array("coef_dt", coef_dt),
+                       state.anchors)
 
 
 class RestTest:

@@ -206,11 +206,12 @@ class Simulator:
         speed = float(np.linalg.norm(v))
         if speed > MAX_LAUNCH_SPEED:
             raise InvalidArgumentError(f"velocity has speed {np.format_float_positional(speed, trim='-')} m/s; allowed: at most {MAX_LAUNCH_SPEED:g} m/s")
-        s = self.state
+        s, before = self.state, self.n_balls
         s.x = np.vstack([s.x, p])
         s.v = np.vstack([s.v, v])
         s.inv_mass = np.append(s.inv_mass, 1.0 / self.model.ball_mass)
         s.entered = np.append(s.entered, np.int8(self.opening.contains(p)))
+        s.relay_anchors(self.model, before, [*range(before), -1])
         return self.n_balls - 1
 
     def remove_ball(self, index: int, wake: bool = True) -> None:
@@ -218,9 +219,10 @@ class Simulator:
         ball's weight is gone) unless ``wake`` is False (a ball that never touched it)."""
         if not 0 <= index < self.n_balls:
             raise IndexError(f"ball index {index} out of range; the scene has {self.n_balls} balls")
-        s, row = self.state, self.model.n_net + index
+        s, row, before = self.state, self.model.n_net + index, self.n_balls
         s.x, s.v = np.delete(s.x, row, axis=0), np.delete(s.v, row, axis=0)
         s.inv_mass, s.entered = np.delete(s.inv_mass, row), np.delete(s.entered, index)
+        s.relay_anchors(self.model, before, [b for b in range(before) if b != index])
         if wake:
             self.wake()
 

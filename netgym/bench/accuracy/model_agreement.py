@@ -80,7 +80,7 @@ def model_agreement(throws: list[Throw], workers: int = 1, cost_rounds: int = 5)
                           "compliant fast vs compliant full": agree("compliant_fast", "compliant_full")},
             "seconds_per_throw": seconds,
             "differ": [i for i, (a, b) in enumerate(zip(runs["compliant_full"], runs["impulse_full"])) if a != b],
-            "step_costs": step_costs(cost_rounds)}
+            "step_costs": step_costs(cost_rounds), "cost_rounds": cost_rounds}
 
 
 def block(path: Path) -> str:
@@ -105,7 +105,7 @@ def block(path: Path) -> str:
             f"{seconds['compliant_full']:.2f} s simulated fully with the compliant model and "
             f"{seconds['compliant_fast']:.3f} s by its fast path, {seconds['impulse_full']:.2f} s and "
             f"{seconds['impulse_fast']:.3f} s with the impulse model, one core. A step with a ball resting on the "
-            f"basket's bottom, compliant against impulse at the same integrator and dt (medians of 5 interleaved "
-            f"rounds): {costs}. How far that ball crept over {CREEP_SECONDS:g} s, compliant: {creep}. "
+            f"basket's bottom, compliant against impulse at the same integrator and dt (medians of "
+            f"{f['cost_rounds']} interleaved rounds): {costs}. How far that ball crept over {CREEP_SECONDS:g} s, compliant: {creep}. "
             f"Source: `docs/results/{path.name}`, written by `{record['command']}` "
             f"({record['written']}, {record['machine']}).")

@@ -36,8 +36,9 @@ LIVE = -1   # no frozen mode or region: those the state is in
 class ContactList(NamedTuple):
     """Contacts that may act within a step: ``kind`` (one of PARTICLE .. NET_GROUND), body ``a``,
     the other side ``b`` (a particle or ball row, a segment or pole index, -1 for the ground),
-    their frozen ``mode`` and ``region`` (a pole's, LIVE elsewhere and outside RK4's steps) and
-    ``count`` (1,), the contacts in use."""
+    their frozen ``mode`` and ``region`` (a pole's, LIVE elsewhere and outside RK4's steps),
+    their ``grip`` (:mod:`~netgym.physics.compliant.grip`) and its ``slot`` in the state's
+    anchors, and ``count`` (1,), the contacts in use."""
 
     kind: np.ndarray
     a: np.ndarray
@@ -45,6 +46,8 @@ class ContactList(NamedTuple):
     mode: np.ndarray
     region: np.ndarray
     count: np.ndarray
+    grip: np.ndarray
+    slot: np.ndarray
 
 
 @kernel
@@ -54,14 +57,16 @@ def new_list(x, model):
     size = n_balls * (model.n_net + model.segments.shape[0] + model.poles.radius.shape[0] + n_balls + 1) + model.n_net
     return ContactList(np.empty(size, dtype=np.int64), np.empty(size, dtype=np.int64),
                        np.empty(size, dtype=np.int64), np.zeros(size, dtype=np.int8),
-                       np.full(size, LIVE, dtype=np.int8), np.zeros(1, dtype=np.int64))
+                       np.full(size, LIVE, dtype=np.int8), np.zeros(1, dtype=np.int64),
+                       np.zeros(size, dtype=np.int8), np.zeros(size, dtype=np.int64))
 
 
 def no_list() -> ContactList:
     """A :class:`ContactList` with room for none: where a kernel takes one that impulse
     contacts never fill."""
     return ContactList(np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64),
-                       np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64))
+                       np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64),
+                       np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int64))
 
 
 class Feature(NamedTuple):
@@ -205,7 +210,7 @@ def _push(f, k, fx, fy, fz, scale):
 
 
 @inline_kernel
-def _spread(f, a, ft, fx, fy, fz):
+def spread(f, a, ft, fx, fy, fz):
     """Add (fx, fy, fz) to ``a`` and its reaction to the point's bodies, by their weights."""
     _push(f, a, fx, fy, fz, 1.0)
     _push(f, ft.i, fx, fy, fz, -ft.wi)
@@ -218,31 +223,6 @@ def mode_of(delta, rate, damping):
     if delta <= 0.0:
         return OFF
     return ON if 1.0 + damping * rate > 0.0 else CLAMPED
-
-
-@kernel
-def add_forces(x, v, model, contacts, stiffness, damping, frozen, f):
-    """Add every listed contact's force to ``f`` (n, 3): in its frozen mode and region if
-    ``frozen`` (ON contacts by the law's continuation), else in those of the state. ``damping``:
-    by kind."""
-    for c in range(contacts.count[0]):
-        kind, a = contacts.kind[c], contacts.a[c]
-        ft = feature(x, model, kind, a, contacts.b[c], contacts.region[c] if frozen else LIVE)
-        ux, uy, uz, closing = approach(v, a, ft)
-        d = damping[kind]
-        mode = contacts.mode[c] if frozen else mode_of(ft.delta, closing, d)
-        if mode == OFF:
-            continue
-        k = stiffness * ft.weight
-        normal = law.free_normal_force(k, ft.delta, closing, d) if mode == ON else 0.0
-        _spread(f, a, ft, normal * ft.nx, normal * ft.ny, normal * ft.nz)
-        if ft.slope != 0.0:
-            segment_slope_force(f, x, a, ft, stiffness)
-        friction = material(model, kind)[1]
-        if friction > 0.0 and normal != 0.0:  # frozen ON: the continuation's, up to the event
-            tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
-            drag = law.friction_factor(friction, normal, math.sqrt(tx * tx + ty * ty + tz * tz))
-            _spread(f, a, ft, -drag * tx, -drag * ty, -drag * tz)
 
 
 @inline_kernel

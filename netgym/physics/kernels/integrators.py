@@ -44,11 +44,14 @@ class Scratch(NamedTuple):
     and ``coef_dt`` (1,): the step for which ``coef``'s last two columns hold IMEX Euler's damper
     shares (they depend on the step and the masses, so :func:`step_imex_euler` computes them once
     per step size), 0 when they hold anything else or were computed for other masses (a
-    relaxation with inertia sets it so). A scratch serves one net: its springs and masses."""
+    relaxation with inertia sets it so). A scratch serves one net: its springs and masses.
+    ``anchors``: the state's compliant contact grips
+    (:mod:`~netgym.physics.compliant.grip`; none with impulses)."""
 
     work: np.ndarray
     coef: np.ndarray
     coef_dt: np.ndarray
+    anchors: np.ndarray
 
     @staticmethod
     def shapes(n_bodies: int, n_springs: int) -> tuple[tuple[int, int, int], tuple[int, int], tuple[int]]:
@@ -57,8 +60,8 @@ class Scratch(NamedTuple):
 
     @classmethod
     def sized(cls, n_bodies: int, n_springs: int) -> "Scratch":
-        """Zeroed scratch for bodies and springs of this size."""
-        return cls(*(np.zeros(shape) for shape in cls.shapes(n_bodies, n_springs)))
+        """Zeroed scratch for bodies and springs of this size, with no anchors."""
+        return cls(*(np.zeros(shape) for shape in cls.shapes(n_bodies, n_springs)), np.zeros((0, 4)))
 
 
 @kernel

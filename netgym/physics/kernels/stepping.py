@@ -9,7 +9,8 @@ import numpy as np
 from numba.extending import overload
 
 from netgym.kinds import ContactModel
-from netgym.physics.compliant.step import compliant_step, new_work
+from netgym.physics.compliant.step import compliant_step
+from netgym.physics.compliant.system import new_work
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 from netgym.physics.kernels.air import rk4_step
@@ -180,18 +181,19 @@ def _substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, b
     return impulse_step
 
 
-def contact_work(settings, x, model):
+def contact_work(settings, x, model, scratch):
     """The scratch :func:`substep` needs besides the integrators': None for impulses,
-    :func:`~netgym.physics.compliant.step.new_work`'s for the compliant model. For numba kernels only."""
+    :func:`~netgym.physics.compliant.system.new_work`'s for the compliant model, its grips kept
+    in ``scratch.anchors``. For numba kernels only."""
     raise TypeError("contact_work runs inside numba kernels only")
 
 
 @overload(contact_work, jit_options={"error_model": "numpy"})
-def _contact_work(settings, x, model):
+def _contact_work(settings, x, model, scratch):
     """The implementation of :func:`contact_work` for the contact model of ``settings``' type."""
     if _compliant(settings):
-        return lambda settings, x, model: new_work(x, model)
-    return lambda settings, x, model: None
+        return lambda settings, x, model, scratch: new_work(x, model, scratch.anchors)
+    return lambda settings, x, model, scratch: None
 
 
 @kernel
@@ -239,7 +241,7 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     its copy).
     """
     buffers = _step_buffers(x, model.n_net)
-    work = contact_work(settings, x, model)
+    work = contact_work(settings, x, model, scratch)
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
@@ -360,7 +362,7 @@ def _relax_steps(x, v, inv_mass, entered, model, settings, n_steps, scratch, sta
     history, memory = rest.history, rest.memory[0]
     window = history.shape[0]
     buffers = _step_buffers(x, model.n_net)
-    work = contact_work(settings, x, model)
+    work = contact_work(settings, x, model, scratch)
     net_gravity = model.gravity / rest.inertia
     memory.steps = 0
     memory.at_rest = False

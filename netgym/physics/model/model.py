@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.config import SceneConfig, SimulationConfig
+from netgym.physics.compliant.grip import ANCHOR_COLUMNS, relaid, slot_count
 from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.kinds import Contact, ContactModel, Integrator, SpringKind
 from netgym.physics.model.net import NetGeometry, build_net
@@ -217,31 +218,52 @@ class Model:
         """Number of springs of all kinds."""
         return len(self.springs)
 
+    @property
+    def anchor_sizes(self) -> tuple[int, int, int] | None:
+        """The net's particles, segments and poles, which size the state's compliant contact
+        anchors (:mod:`~netgym.physics.compliant.grip`); None with impulse contacts, which keep none."""
+        if ContactModel.parse(self.config.simulation.contact_model) != ContactModel.COMPLIANT:
+            return None
+        return self.n_net, len(self.segments), len(self.poles.radius)
+
 
 @dataclass
 class State:
     """Positions ``x`` and velocities ``v`` of all bodies, their inverse masses, each ball's
-    ``entered`` flag (1 once it came in through the opening, 0 again if it left through it)
-    and the simulated ``time``."""
+    ``entered`` flag (1 once it came in through the opening, 0 again if it left through it),
+    the simulated ``time`` and the compliant contacts' ``anchors`` (their grips, kept between
+    steps: :mod:`~netgym.physics.compliant.grip`; no rows with impulse contacts)."""
 
     x: np.ndarray
     v: np.ndarray
     inv_mass: np.ndarray
     entered: np.ndarray
     time: float = 0.0
+    anchors: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, ANCHOR_COLUMNS)))
 
     @classmethod
     def at_rest(cls, model: Model, positions: np.ndarray | None = None) -> "State":
         """The net at ``positions`` (default: its built geometry), still, with no balls."""
         x = np.array(model.geometry.positions if positions is None else positions, dtype=np.float64)
+        sizes = model.anchor_sizes
+        anchors = np.zeros((0 if sizes is None else slot_count(*sizes, 0), ANCHOR_COLUMNS))
         return cls(x=x, v=np.zeros_like(x), inv_mass=model.net_inv_mass.copy(),
-                   entered=np.zeros(0, dtype=np.int8))
+                   entered=np.zeros(0, dtype=np.int8), anchors=anchors)
 
     def copy(self) -> "State":
         """An independent copy."""
-        return State(self.x.copy(), self.v.copy(), self.inv_mass.copy(), self.entered.copy(), self.time)
+        return State(self.x.copy(), self.v.copy(), self.inv_mass.copy(), self.entered.copy(), self.time,
+                     self.anchors.copy())
 
     def restore(self, other: "State") -> None:
         """Overwrite this state in place with ``other``'s values."""
         self.x, self.v = other.x.copy(), other.v.copy()
         self.inv_mass, self.entered, self.time = other.inv_mass.copy(), other.entered.copy(), other.time
+        self.anchors = other.anchors.copy()
+
+    def relay_anchors(self, model: Model, old_balls: int, kept: list[int]) -> None:
+        """Lay the anchors of ``old_balls`` balls out for the balls ``kept`` (old indices in
+        their new order, -1 for a new one), after balls were added or taken out."""
+        sizes = model.anchor_sizes
+        if sizes is not None:
+            self.anchors = relaid(self.anchors, sizes, old_balls, kept)
