@@ -2,12 +2,14 @@
 implicitly (each contact's normal and then tangential velocity solved by backward Euler, in
 list order, at the positions of the step's start), then the net's smooth forces as
 :func:`~netgym.physics.kernels.integrators.step_imex_euler`. A gripping contact's anchor is a
-spring and damper solved together by backward Euler, its impulse kept within Coulomb's cone;
-its anchor then moves by the sliding the step's final velocities did, and back onto the cone
-where it stretched beyond it (a return mapping). The balls' own weight comes first, so that the
-contacts hold what it adds (after them, a gripping anchor would have to stretch beyond the
-load it holds by the backward Euler's damper share, and a resting ball would slide once that
-passed the cone). Grips change at the step's start."""
+spring and damper solved together by backward Euler; where the impulse that would hold it
+leaves Coulomb's cone it breaks away and slides, as RK4's contacts do where the anchor's force
+leaves it (holding it on the cone instead, a return mapping, is exact Coulomb friction: another
+model than RK4's, which IMEX Euler then did not converge to, its errors stalling at 7 mm).
+Its anchor moves by the sliding the step's final velocities did. The balls' own weight comes
+first, so that the contacts hold what it adds (after them, a gripping anchor would have to
+stretch beyond the load it holds by the backward Euler's damper share). Grips change at the
+step's start otherwise."""
 
 from __future__ import annotations
 
@@ -35,24 +37,24 @@ def _impulse(v, inv_mass, a, ft, jx, jy, jz):
 @inline_kernel
 def _held(v, inv_mass, a, ft, h, w_eff, k_t, c_t, limit, z, c, tx, ty, tz):
     """Hold a gripping contact (sliding at (tx, ty, tz), anchors ``z``) by its anchor over
-    ``h`` (backward Euler), the impulse within Coulomb's cone ``h * limit`` (``limit``: friction
-    times the normal force): beyond it, the cone's impulse along the holding one."""
+    ``h`` (backward Euler); returns False, changing nothing, where the impulse that would hold
+    it leaves Coulomb's cone ``h * limit`` (``limit``: friction times the normal force)."""
     zx, zy, zz = grip.tangential(z[c, 0], z[c, 1], z[c, 2], ft.nx, ft.ny, ft.nz)
     scale = 1.0 / (1.0 + h * w_eff * (c_t + h * k_t))
     jx = ((tx - h * w_eff * k_t * zx) * scale - tx) / w_eff
     jy = ((ty - h * w_eff * k_t * zy) * scale - ty) / w_eff
     jz = ((tz - h * w_eff * k_t * zz) * scale - tz) / w_eff
-    size = math.sqrt(jx * jx + jy * jy + jz * jz)
-    cap = min(1.0, h * limit / size) if size > 0.0 else 1.0
-    _impulse(v, inv_mass, a, ft, cap * jx, cap * jy, cap * jz)
+    if math.sqrt(jx * jx + jy * jy + jz * jz) > h * limit:
+        return False
+    _impulse(v, inv_mass, a, ft, jx, jy, jz)
+    return True
 
 
 @kernel
-def _move_anchors(start, v, model, contacts, h, z, limit):
+def _move_anchors(start, v, model, contacts, h, z):
     """Move each gripping contact's anchor (``z``) by the sliding its bodies did over ``h`` at
     their velocities ``v`` after the step (those that moved them), across its normal at the
-    positions ``start``, and back onto Coulomb's cone where it stretched beyond it (``limit``:
-    friction times normal force over its stiffness; a return mapping)."""
+    positions ``start``."""
     for c in range(contacts.count[0]):
         if contacts.grip[c] != grip.STICK:
             continue
@@ -60,21 +62,18 @@ def _move_anchors(start, v, model, contacts, h, z, limit):
         ft = cl.feature(start, model, contacts.kind[c], a, contacts.b[c])
         ux, uy, uz, closing = cl.approach(v, a, ft)
         zx, zy, zz = grip.tangential(z[c, 0], z[c, 1], z[c, 2], ft.nx, ft.ny, ft.nz)
-        zx, zy, zz = zx + h * (ux + closing * ft.nx), zy + h * (uy + closing * ft.ny), zz + h * (uz + closing * ft.nz)
-        stretch = math.sqrt(zx * zx + zy * zy + zz * zz)
-        back = min(1.0, limit[c] / stretch) if stretch > 0.0 else 1.0
-        z[c, 0], z[c, 1], z[c, 2] = back * zx, back * zy, back * zz
+        z[c, 0], z[c, 1], z[c, 2] = zx + h * (ux + closing * ft.nx), zy + h * (uy + closing * ft.ny), \
+            zz + h * (uz + closing * ft.nz)
 
 
 @kernel
-def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping, z, limit):
+def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping, z):
     """IMEX Euler's contacts over ``h``, at the positions of its start, in list order: the
     spring and the damper of each along its normal together by backward Euler on its closing
-    rate (no pull), then its friction: a gripping contact's anchor (``z``; its stretch's limit
-    into ``limit``, 0 where it does not push), or sliding friction by backward Euler on its
-    sliding velocity."""
+    rate (no pull), then its friction: a gripping contact's anchor (``z``), unless holding it
+    would leave Coulomb's cone (it breaks away: SLOW), or sliding friction by backward Euler on
+    its sliding velocity."""
     for c in range(contacts.count[0]):
-        limit[c] = 0.0
         kind, a = contacts.kind[c], contacts.a[c]
         ft = cl.feature(x, model, kind, a, contacts.b[c])
         if ft.delta <= 0.0 or ft.weight == 0.0:
@@ -93,9 +92,10 @@ def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping, z,
         tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
         if contacts.grip[c] == grip.STICK:
             k_t, c_t = grip.anchor_terms(stiffness, ft.weight, w_eff)
-            _held(v, inv_mass, a, ft, h, w_eff, k_t, c_t, friction * push / h, z, c, tx, ty, tz)
-            limit[c] = friction * push / (h * k_t) if k_t > 0.0 else 0.0
-            continue
+            if _held(v, inv_mass, a, ft, h, w_eff, k_t, c_t, friction * push / h, z, c, tx, ty, tz):
+                continue
+            contacts.grip[c] = grip.SLOW
+            z[c, 0], z[c, 1], z[c, 2] = 0.0, 0.0, 0.0
         if contacts.grip[c] == grip.SLOW:
             z[c, 0] += h   # its clock
         factor = law.friction_factor(friction, push / h, math.sqrt(tx * tx + ty * ty + tz * tz))
@@ -125,7 +125,7 @@ def imex(x, v, inv_mass, model, net_gravity, h, work, stiffness, scratch):
     for k in range(n_net, x.shape[0]):
         ax, ay, az = ball_acceleration(v, k, model)
         v[k, 0], v[k, 1], v[k, 2] = v[k, 0] + h * ax, v[k, 1] + h * ay, v[k, 2] + h * az
-    _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, work.damping, z, work.limit)
+    _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, work.damping, z)
     balls = rows[2][n_net:]
     copy_rows(balls, v[n_net:])
     step_imex_euler(x, v, inv_mass, net_gravity, model.drag, model.springs, h, scratch)
@@ -133,4 +133,4 @@ def imex(x, v, inv_mass, model, net_gravity, h, work, stiffness, scratch):
         for c in range(3):
             v[k, c] = balls[k - n_net, c]
             x[k, c] = start[k, c] + h * v[k, c]
-    _move_anchors(start, v, model, contacts, h, z, work.limit)
+    _move_anchors(start, v, model, contacts, h, z)

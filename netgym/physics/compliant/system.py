@@ -27,8 +27,7 @@ class Work(NamedTuple):
     the end or a trial (``side0``, ``side1``) and the regions of the latter; the listed contacts'
     anchor displacements and their rates by stage (``anchor``, rows Z .. ZLO), their grips'
     event values at the start and the end or a trial (``grip0``, ``grip1``) and sliding speeds
-    (``slide``), IMEX Euler's limits of their anchors' stretch (``limit``); ``anchors``: the
-    state's slots (:mod:`~netgym.physics.compliant.grip`)."""
+    (``slide``); ``anchors``: the state's slots (:mod:`~netgym.physics.compliant.grip`)."""
 
     contacts: cl.ContactList
     touch0: np.ndarray
@@ -50,7 +49,6 @@ class Work(NamedTuple):
     grip0: np.ndarray
     grip1: np.ndarray
     slide: np.ndarray
-    limit: np.ndarray
     anchors: np.ndarray
 
 
@@ -68,8 +66,7 @@ def new_work(x, model, anchors):
                 np.empty(size), np.empty(size, dtype=np.int8), np.empty(size, dtype=np.int64),
                 np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model),
                 np.zeros(x.shape[0]), np.empty(size), np.empty(size), np.empty(size, dtype=np.int8),
-                np.zeros((ANCHOR_ROWS, size, 3)), np.empty(size), np.empty(size), np.empty(size), np.empty(size),
-                anchors)
+                np.zeros((ANCHOR_ROWS, size, 3)), np.empty(size), np.empty(size), np.empty(size), anchors)
 
 
 @kernel
