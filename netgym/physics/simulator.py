@@ -22,7 +22,7 @@ from netgym.config import AirConfig, SceneConfig, load_scene
 from netgym.errors import InvalidArgumentError, NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
 from netgym.physics.kernels.forces import energies
 from netgym.physics.integration import RestTest, Workspace
-from netgym.kinds import Integrator
+from netgym.kinds import ContactModel, Integrator
 from netgym.physics.model.model import KernelModel, Model, Settings, State
 from netgym.physics.model.opening import Opening
 from netgym.physics.outcomes import CaptureRule, capture_rule
@@ -146,6 +146,11 @@ class Simulator:
     def integrator(self) -> Integrator:
         """The scene's integrator."""
         return self.model.integrator
+
+    @property
+    def contact_model(self) -> ContactModel:
+        """The scene's contact model."""
+        return ContactModel.parse(self.config.simulation.contact_model)
 
     @property
     def opening(self) -> Opening:

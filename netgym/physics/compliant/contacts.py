@@ -61,12 +61,11 @@ def new_list(x, model):
                        np.zeros(size, dtype=np.int8), np.zeros(size, dtype=np.int64))
 
 
-def no_list() -> ContactList:
-    """A :class:`ContactList` with room for none: where a kernel takes one that impulse
-    contacts never fill."""
-    return ContactList(np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64),
-                       np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64),
-                       np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int64))
+NO_CONTACTS = ContactList(np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64),
+                          np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int8), np.zeros(1, dtype=np.int64),
+                          np.zeros(0, dtype=np.int8), np.zeros(0, dtype=np.int64))
+"""A :class:`ContactList` with room for none, shared: where a kernel takes one that impulse
+contacts never fill (its count stays 0)."""
 
 
 class Feature(NamedTuple):

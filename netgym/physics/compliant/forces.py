@@ -101,21 +101,19 @@ def _grip_value(tg, g, z, c):
 
 
 @kernel
-def grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, value, slide):
+def grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, value):
     """Each listed contact's grip event function (:func:`~netgym.physics.compliant.grip.grip_value`)
-    into ``value`` and its sliding speed into ``slide``, in its frozen mode and region; ``z``:
-    the anchor displacements."""
+    into ``value``, in its frozen mode and region; ``z``: the anchor displacements."""
     for c in range(contacts.count[0]):
         tg = tangent(x, v, inv_mass, model, contacts, c, stiffness, damping, True)
         value[c] = _grip_value(tg, contacts.grip[c], z, c)
-        slide[c] = tg.slide
 
 
 @kernel
 def regrip(x, v, inv_mass, model, contacts, z, stiffness, damping, breaks):
     """Give each listed contact, its modes and regions frozen at (x, v), the grip it takes there
     (:func:`~netgym.physics.compliant.grip.regrip`), one that grips its anchor where it is.
-    Unless ``breaks`` (IMEX Euler, whose implicit normal impulses and return mapping keep the
+    Unless ``breaks`` (IMEX Euler, whose impulses break a grip where holding it would leave the
     cone), a gripping contact holds while it touches: what pushes is its overlap, not the
     explicit law's mode."""
     for c in range(contacts.count[0]):

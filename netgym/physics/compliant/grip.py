@@ -36,6 +36,7 @@ import math
 import numpy as np
 
 from netgym.physics.compliant import law
+from netgym.physics.compliant.contacts import BALL, NET_GROUND, PARTICLE, POLE, SEGMENT
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 FREE, STICK, FAST, SLOW = 0, 1, 2, 3
@@ -55,24 +56,23 @@ def slot_count(n_net, n_segments, n_poles, n_balls):
 
 @inline_kernel
 def slot_of(model, n_balls, kind, a, b):
-    """The slot of the contact (``kind``, ``a``, ``b``) (kinds of
-    :mod:`~netgym.physics.compliant.contacts`: 0 particle, 1 segment, 2 pole, 3 ball, 4 ground,
-    5 a net particle on the ground)."""
+    """The slot of the contact (``kind``, ``a``, ``b``) (see
+    :class:`~netgym.physics.compliant.contacts.ContactList`)."""
     n_net = model.n_net
     n_segments, n_poles = model.segments.shape[0], model.poles.radius.shape[0]
     per_ball = n_net + n_segments + n_poles + n_balls + 1
-    if kind == 5:
+    if kind == NET_GROUND:
         return n_balls * per_ball + a
     base = (a - n_net) * per_ball
-    if kind == 0:
+    if kind == PARTICLE:
         return base + b
-    if kind == 1:
+    if kind == SEGMENT:
         return base + n_net + b
-    if kind == 2:
+    if kind == POLE:
         return base + n_net + n_segments + b
-    if kind == 3:
+    if kind == BALL:
         return base + n_net + n_segments + n_poles + (b - n_net)
-    return base + per_ball - 1
+    return base + per_ball - 1   # the ground
 
 
 def relaid(anchors: np.ndarray, sizes: tuple[int, int, int], old_balls: int, kept: list[int]) -> np.ndarray:

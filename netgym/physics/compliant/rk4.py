@@ -57,7 +57,7 @@ def _values(x, v, inv_mass, model, work, stiffness, z):
     modes, regions and grips, into ``touch1``, ``on1``, ``rate1``, ``side1`` and ``grip1``."""
     contacts, damping = work.contacts, work.damping
     cl.event_values(x, v, model, contacts, damping, work.touch1, work.on1, work.rate1, work.side1)
-    forces.grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, work.grip1, work.slide)
+    forces.grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, work.grip1)
 
 
 @kernel

@@ -26,8 +26,8 @@ class Work(NamedTuple):
     scratch of the split's frequency bound; the pole contacts' axis parameters at the start and
     the end or a trial (``side0``, ``side1``) and the regions of the latter; the listed contacts'
     anchor displacements and their rates by stage (``anchor``, rows Z .. ZLO), their grips'
-    event values at the start and the end or a trial (``grip0``, ``grip1``) and sliding speeds
-    (``slide``); ``anchors``: the state's slots (:mod:`~netgym.physics.compliant.grip`)."""
+    event values at the start and the end or a trial (``grip0``, ``grip1``); ``anchors``: the
+    state's slots (:mod:`~netgym.physics.compliant.grip`)."""
 
     contacts: cl.ContactList
     touch0: np.ndarray
@@ -48,7 +48,6 @@ class Work(NamedTuple):
     anchor: np.ndarray
     grip0: np.ndarray
     grip1: np.ndarray
-    slide: np.ndarray
     anchors: np.ndarray
 
 
@@ -66,7 +65,7 @@ def new_work(x, model, anchors):
                 np.empty(size), np.empty(size, dtype=np.int8), np.empty(size, dtype=np.int64),
                 np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model),
                 np.zeros(x.shape[0]), np.empty(size), np.empty(size), np.empty(size, dtype=np.int8),
-                np.zeros((ANCHOR_ROWS, size, 3)), np.empty(size), np.empty(size), np.empty(size), anchors)
+                np.zeros((ANCHOR_ROWS, size, 3)), np.empty(size), np.empty(size), anchors)
 
 
 @kernel
@@ -106,7 +105,7 @@ def freeze(x, v, inv_mass, model, work, stiffness, z, breaks):
     cl.modes_from(work.touch0, work.on0, count, contacts.mode)
     cl.regions_from(work.side0, contacts, contacts.mode, contacts.region)
     forces.regrip(x, v, inv_mass, model, contacts, z, stiffness, damping, breaks)
-    forces.grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, work.grip0, work.slide)
+    forces.grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, work.grip0)
 
 
 @inline_kernel

@@ -66,7 +66,7 @@ class Watch(NamedTuple):
     farther than that from everything, :func:`far_from_a_slow_scene`), its
     :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box`` (6,), the
     grown box of the last check (min x, y, z, max x, y, z), and room for the compliant contacts
-    the energy bound lists (:func:`~netgym.physics.compliant.contacts.no_list` with impulse
+    the energy bound lists (:data:`~netgym.physics.compliant.contacts.NO_CONTACTS` with impulse
     contacts)."""
 
     row: int

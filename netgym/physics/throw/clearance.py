@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from netgym.kinds import ContactModel
 from netgym.physics.throw import approach
 
 from netgym.physics.kernels import surroundings
@@ -45,7 +46,7 @@ def can_roll_alone(throw: ThrowContext) -> bool:
     with compliant contacts: the lone ball's step is the impulse model's."""
     sim, course = throw.sim, throw.course
     s, dt = sim.state, sim.config.simulation.dt
-    return (sim.config.simulation.contact_model == "impulse" and round((course.deadline - s.time) / dt) > 0
+    return (sim.contact_model == ContactModel.IMPULSE and round((course.deadline - s.time) / dt) > 0
             and surroundings.alone_for_a_step(s.x, s.v, s.inv_mass, throw.lone, throw.ball.row, dt))
 
 

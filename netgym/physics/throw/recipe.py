@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from netgym.arguments import vector_argument
+from netgym.kinds import ContactModel
 from netgym.errors import SimulationDivergedError
 from netgym.physics.compliant import contacts as compliant_contacts
 from netgym.physics.kernels import air, reach
@@ -116,7 +117,7 @@ class Throw:
         throw = self.context
         sim, row = throw.sim, throw.ball.row
         s, m, km, cfg = sim.state, sim.model, sim.kernel_model, sim.config.simulation
-        compliant = cfg.contact_model == "compliant"
+        compliant = sim.contact_model == ContactModel.COMPLIANT
         budget = reach.Budget(reach.potential_without_ball(s.x, s.v, s.inv_mass, row, km.gravity, km.springs.pairs,
                                                            km.springs.params),
                               sim.n_balls * air.wind_power_bound(m.ball_mass, m.ball_drag, m.wind), km.gravity,
@@ -126,7 +127,7 @@ class Throw:
         return Watch(row, s.time, deadline, cfg.dt, max(1, round(CHUNK_SECONDS / cfg.dt)), TUNING.clearance,
                      about + TUNING.awake_margin, throw.rule.decision_depth(m.ball_radius), TUNING.sleep_speed,
                      TUNING.far_clearance, TUNING.far_sleep_speed, budget, rest, np.empty(6),
-                     compliant_contacts.new_list(s.x, km) if compliant else compliant_contacts.no_list())
+                     compliant_contacts.new_list(s.x, km) if compliant else compliant_contacts.NO_CONTACTS)
 
     def _until_decided(self) -> Plan:
         """Simulate the ball until its outcome is decided; returns the :class:`Reason`.
