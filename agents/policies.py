@@ -33,10 +33,10 @@ its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRET
 task has none that learned."""
 
 
-SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", "TQC", "RecurrentPPO")
-"""The algorithms a saved model may come from: Stable-Baselines3's, and sb3-contrib's TQC and
-RecurrentPPO (:data:`CONTRIB_ALGORITHMS`)."""
 CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")
+"""The algorithms a saved model may come from that sb3-contrib implements."""
+SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", *CONTRIB_ALGORITHMS)
+"""The algorithms a saved model may come from: Stable-Baselines3's, and :data:`CONTRIB_ALGORITHMS`."""
 TRAIN_EXTRA = 'Stable-Baselines3 and torch: pip install torch==2.13.0 && pip install -e ".[train]"'
 """What a saved model or training needs beyond the environment, and how to install it."""
 

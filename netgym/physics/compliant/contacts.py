@@ -50,11 +50,19 @@ class ContactList(NamedTuple):
     slot: np.ndarray
 
 
+@inline_kernel
+def possible_contacts(n_net, n_segments, n_poles, n_balls):
+    """How many contacts a scene with these many net particles, segments, poles and balls can
+    have: per ball one with each particle, segment, pole, ball and the ground, then one per
+    particle with the ground."""
+    return n_balls * (n_net + n_segments + n_poles + n_balls + 1) + n_net
+
+
 @kernel
 def new_list(x, model):
     """An empty :class:`ContactList` with room for every contact of a state like ``x``."""
-    n_balls = x.shape[0] - model.n_net
-    size = n_balls * (model.n_net + model.segments.shape[0] + model.poles.radius.shape[0] + n_balls + 1) + model.n_net
+    size = possible_contacts(model.n_net, model.segments.shape[0], model.poles.radius.shape[0],
+                             x.shape[0] - model.n_net)
     return ContactList(np.empty(size, dtype=np.int64), np.empty(size, dtype=np.int64),
                        np.empty(size, dtype=np.int64), np.zeros(size, dtype=np.int8),
                        np.full(size, LIVE, dtype=np.int8), np.zeros(1, dtype=np.int64),

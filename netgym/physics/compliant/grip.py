@@ -26,8 +26,9 @@ its clock, so that no sequence of changes accumulates (as re-gripping at once wo
 normal force vanishes). RK4 locates these events as it does the normal ones; the other
 integrators change a grip at the start of a part.
 
-A grip lives in its contact's slot of the state's ``anchors`` array (:func:`slot_count` rows of
-``(z_x, z_y, z_z, grip)``), where it persists between steps, calls and checkpoints."""
+A grip lives in its contact's slot of the state's ``anchors`` array, a row ``(z_x, z_y, z_z,
+grip)`` per possible contact (:func:`~netgym.physics.compliant.contacts.possible_contacts`),
+where it persists between steps, calls and checkpoints."""
 
 from __future__ import annotations
 
@@ -36,7 +37,7 @@ import math
 import numpy as np
 
 from netgym.physics.compliant import law
-from netgym.physics.compliant.contacts import BALL, NET_GROUND, PARTICLE, POLE, SEGMENT
+from netgym.physics.compliant.contacts import BALL, NET_GROUND, PARTICLE, POLE, SEGMENT, possible_contacts
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 FREE, STICK, FAST, SLOW = 0, 1, 2, 3
@@ -45,13 +46,6 @@ STICK_DAMPING = 1.0            # an anchor's damping ratio against its contact's
 STICK_SPEED = law.SLIP_SPEED   # m/s: a sliding contact grips when it slows below this
 REGRIP_TIME = 0.005            # s: a contact that broke away slowly slides this long before it grips again
 ANCHOR_COLUMNS = 4             # a slot: the anchor displacement (3) and the grip
-
-
-@inline_kernel
-def slot_count(n_net, n_segments, n_poles, n_balls):
-    """Slots of a scene with these many net particles, segments, poles and balls: per ball one
-    for each particle, segment, pole, ball and the ground, then one per particle (the ground)."""
-    return n_balls * (n_net + n_segments + n_poles + n_balls + 1) + n_net
 
 
 @inline_kernel
@@ -81,7 +75,7 @@ def relaid(anchors: np.ndarray, sizes: tuple[int, int, int], old_balls: int, kep
     the net's on the ground carried over. ``sizes``: the net's particles, segments and poles."""
     n_net, n_segments, n_poles = sizes
     fixed = n_net + n_segments + n_poles
-    out = np.zeros((slot_count(n_net, n_segments, n_poles, len(kept)), ANCHOR_COLUMNS))
+    out = np.zeros((possible_contacts(n_net, n_segments, n_poles, len(kept)), ANCHOR_COLUMNS))
     old_per, new_per = fixed + old_balls + 1, fixed + len(kept) + 1
     for new, old in enumerate(kept):
         if old < 0:

@@ -58,9 +58,8 @@ def new_work(x, model, anchors):
     long as the scratch)."""
     contacts = cl.new_list(x, model)
     size = contacts.kind.shape[0]
-    slots = grip.slot_count(model.n_net, model.segments.shape[0], model.poles.radius.shape[0], x.shape[0] - model.n_net)
-    if anchors.shape[0] != slots:
-        anchors = np.zeros((slots, grip.ANCHOR_COLUMNS))
+    if anchors.shape[0] != size:   # a slot per possible contact
+        anchors = np.zeros((size, grip.ANCHOR_COLUMNS))
     return Work(contacts, np.empty(size), np.empty(size), np.empty(size), np.empty(size), np.empty(size),
                 np.empty(size), np.empty(size, dtype=np.int8), np.empty(size, dtype=np.int64),
                 np.empty((13, x.shape[0], 3)), np.zeros(2, dtype=np.int64), cl.dampings(model),

@@ -15,7 +15,8 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.config import SceneConfig, SimulationConfig
-from netgym.physics.compliant.grip import ANCHOR_COLUMNS, relaid, slot_count
+from netgym.physics.compliant.contacts import possible_contacts
+from netgym.physics.compliant.grip import ANCHOR_COLUMNS, relaid
 from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.kinds import Contact, ContactModel, Integrator, SpringKind
 from netgym.physics.model.net import NetGeometry, build_net
@@ -246,7 +247,7 @@ class State:
         """The net at ``positions`` (default: its built geometry), still, with no balls."""
         x = np.array(model.geometry.positions if positions is None else positions, dtype=np.float64)
         sizes = model.anchor_sizes
-        anchors = np.zeros((0 if sizes is None else slot_count(*sizes, 0), ANCHOR_COLUMNS))
+        anchors = np.zeros((0 if sizes is None else possible_contacts(*sizes, 0), ANCHOR_COLUMNS))
         return cls(x=x, v=np.zeros_like(x), inv_mass=model.net_inv_mass.copy(),
                    entered=np.zeros(0, dtype=np.int8), anchors=anchors)
 
