@@ -79,10 +79,18 @@ def vector_counterpart(env_id: str, **env_kwargs: Any) -> tuple[str, dict[str, A
     return DEFAULT_ENV, env_kwargs
 
 
+def acting_space(model_space: spaces.Space) -> spaces.Space:
+    """What of a model's observations its policy acts on: the ``"pixels"`` of an asymmetric
+    actor-critic's Dict (:mod:`agents.asymmetric`; its critics alone read the ``"state"``), else
+    the whole."""
+    return model_space["pixels"] if isinstance(model_space, spaces.Dict) else model_space
+
+
 def frames_fitting(model_space: spaces.Space, env_space: spaces.Space) -> int | None:
     """How many of the env's observations make one of the model's (1 for the same shape, or an
-    image SB3 turned channel-first; k for a vector k times as long), or None if they do not fit."""
-    model, env = model_space.shape, env_space.shape
+    image SB3 turned channel-first; k for a vector k times as long), or None if they do not fit.
+    A model's space is the one it acts on (:func:`acting_space`)."""
+    model, env = acting_space(model_space).shape, env_space.shape
     if model == env or (len(env) == 3 and model == (env[2], env[0], env[1])):
         return 1
     if len(model) == len(env) == 1 and model[0] % env[0] == 0:
@@ -105,7 +113,7 @@ def model_env(model: Any, env_id: str | None = None, name: str = "the model") ->
     if frames is None or (saved is not None and frames != saved.frame_stack):
         trained = f"trained on {saved}" if saved is not None else "saved without its env id"
         raise EnvMismatchError(
-            f"{name} was {trained}: it reads observations of shape {model.observation_space.shape}, and "
+            f"{name} was {trained}: it reads observations of shape {acting_space(model.observation_space).shape}, and "
             f"{target}'s have shape {observation_space(target).shape}; "
             + (f"evaluate it on {saved.env_id}" if saved is not None else "pass an env it was trained on"))
     if saved is not None and saved.env_id != target:
@@ -120,5 +128,6 @@ def _matching_env(model: Any, name: str) -> ModelEnv:
     if default or len(fitting) == 1:
         return (default or fitting)[0]
     raise EnvMismatchError(
-        f"{name} was saved without its env id, and its observations of shape {model.observation_space.shape} "
+        f"{name} was saved without its env id, and its observations of shape "
+        f"{acting_space(model.observation_space).shape} "
         f"fit {', '.join(map(str, fitting)) or 'none of the registered NetCatch ids'}; name the env it was trained on")

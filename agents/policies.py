@@ -35,8 +35,11 @@ task has none that learned."""
 
 CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")
 """The algorithms a saved model may come from that sb3-contrib implements."""
-SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", *CONTRIB_ALGORITHMS)
-"""The algorithms a saved model may come from: Stable-Baselines3's, and :data:`CONTRIB_ALGORITHMS`."""
+AGENTS_ALGORITHMS = ("AsymmetricSAC",)
+"""The algorithms a saved model may come from that :mod:`agents.asymmetric` implements."""
+SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", *CONTRIB_ALGORITHMS, *AGENTS_ALGORITHMS)
+"""The algorithms a saved model may come from: Stable-Baselines3's, :data:`CONTRIB_ALGORITHMS`
+and :data:`AGENTS_ALGORITHMS` (built on Stable-Baselines3)."""
 TRAIN_EXTRA = 'Stable-Baselines3 and torch: pip install torch==2.13.0 && pip install -e ".[train]"'
 """What a saved model or training needs beyond the environment, and how to install it."""
 
@@ -67,8 +70,9 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str | None =
                                 f"checkpoint folder")
     algorithm = by_name[(algorithm or saved_algorithm(name)).upper()]
     contrib = algorithm in CONTRIB_ALGORITHMS
+    module = "sb3_contrib" if contrib else "agents.asymmetric" if algorithm in AGENTS_ALGORITHMS else "stable_baselines3"
     try:
-        package = importlib.import_module("sb3_contrib" if contrib else "stable_baselines3")
+        package = importlib.import_module(module)
     except ImportError as missing:
         extra = 'sb3-contrib: pip install -e ".[baselines]"' if contrib else TRAIN_EXTRA
         raise ImportError(f"loading the saved model {str(name)!r} needs {extra}") from missing

@@ -76,28 +76,38 @@ class ThrowerView(gym.ObservationWrapper):
     :param env: a NetCatch env (any render mode).
     :param size: image side in pixels.
     :param fov: vertical field of view (degrees).
+    :param with_state: also keep the vector observation: each observation is then a Dict of the
+        image (``"pixels"``) and the vector (``"state"``), for training methods whose critic
+        reads the state while the policy acts on the image alone (:mod:`agents.asymmetric`).
     """
 
-    def __init__(self, env: gym.Env, size: int = 84, fov: float = 60.0) -> None:
+    def __init__(self, env: gym.Env, size: int = 84, fov: float = 60.0, with_state: bool = False) -> None:
         super().__init__(env)
         if not isinstance(size, int) or not 16 <= size <= 512:
             raise InvalidArgumentError(f"size = {size!r}; allowed: an integer in [16, 512]")
+        if not isinstance(with_state, (bool, np.bool_)):
+            raise InvalidArgumentError(f"with_state = {with_state!r}; allowed: True or False")
         from netgym.view.render import Renderer
 
-        self.fov = fov
+        self.fov, self.with_state = fov, bool(with_state)
         self.renderer = Renderer(env.unwrapped.sim, size, size, supersample=1)
-        self.observation_space = gym.spaces.Box(0, 255, (size, size, 3), np.uint8)
+        image = gym.spaces.Box(0, 255, (size, size, 3), np.uint8)
+        self.observation_space = gym.spaces.Dict({"pixels": image, "state": env.observation_space}) if with_state \
+            else image
 
-    def observation(self, observation: np.ndarray) -> np.ndarray:
-        """The image from the current thrower's release point."""
+    def observation(self, observation: np.ndarray) -> np.ndarray | dict[str, np.ndarray]:
+        """The image from the current thrower's release point (with the vector ``observation``
+        beside it under ``with_state``)."""
         env = self.env.unwrapped
         if self.renderer.camera.eye.tolist() != env.thrower.position.tolist():
             self.renderer.look_from(env.thrower.position, env.sim.opening.centre, self.fov)
-        return self.renderer.draw(env.sim)
+        image = self.renderer.draw(env.sim)
+        return {"pixels": image, "state": observation} if self.with_state else image
 
 
-def thrower_view_env(size: int = 84, **kwargs: Any) -> gym.Env:
-    """A NetCatch env (``kwargs``) with :class:`ThrowerView` pixel observations."""
+def thrower_view_env(size: int = 84, with_state: bool = False, **kwargs: Any) -> gym.Env:
+    """A NetCatch env (``kwargs``) with :class:`ThrowerView` pixel observations (``size``,
+    ``with_state``)."""
     from netgym.envs import NetCatchEnv
 
-    return ThrowerView(NetCatchEnv(**kwargs), size)
+    return ThrowerView(NetCatchEnv(**kwargs), size, with_state=with_state)

@@ -23,6 +23,7 @@ ALGORITHMS: dict[str, tuple[str, str]] = {
     "tqc": ("sb3_contrib", "TQC"),
     "rppo": ("sb3_contrib", "RecurrentPPO"),
     "ppo_cnn": ("stable_baselines3", "PPO"),
+    "sac_asym": ("agents.asymmetric", "AsymmetricSAC"),
 }
 """Algorithm name (its yml's name) -> (module, class) of its implementation."""
 REFERENCES = ("random", "blind", "oracle")
@@ -35,7 +36,7 @@ BUDGETS: dict[str, int] = {
     "NetCatchGoal-v0": 20_480,
     "NetCatchNoisy-v0": 20_480,
     "NetCatchWindy-v0": 30_720,
-    "NetCatchPixels-v0": 491_520,
+    "NetCatchPixels-v0": 20_480,
     "NetCatchLongEpisode-v0": 20_480,
     "NetCatchRandomized-v0": 20_480,
     "NetCatchRandomized-v1": 30_720,
@@ -48,8 +49,9 @@ steps (docs/AGENTS.md), SAC, TD3 and TQC at 2,000-4,000; on the windy id PPO nee
 PPO-CNN 47. Taking a catching policy's later steps at 60% of those rates, the table of 5 seeds
 is ~27,000 CPU seconds, ~3.8 hours on 2 cores (the limit: 6). NetCatchLongEpisode-v0 asks the
 same aim as NetCatch-v0 into a fuller net, so it gets NetCatch-v0's budget; NetCatchRandomized-v1,
-5 throws with feedback like the windy id, gets the windy id's. Pixels get 24x NetCatch-v0's
-budget: the CNN's settings climbed only slowly (ppo_cnn.yml), ~115 minutes a seed on one core."""
+5 throws with feedback like the windy id, gets the windy id's. Pixels get NetCatch-v0's: the
+asymmetric SAC (sac_asym.yml) caught every throw from 8,192 steps; PPO-CNN, which climbed only
+slowly (ppo_cnn.yml), would need ~115 minutes a seed for 24x that, beyond the table's hours."""
 TABLE_IDS = ("NetCatch-v0", "NetCatchGoal-v0", "NetCatchNoisy-v0", "NetCatchWindy-v0", "NetCatchPixels-v0",
              "NetCatchLongEpisode-v0", "NetCatchRandomized-v1")
 """The ids of the table (the default)."""

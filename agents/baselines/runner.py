@@ -28,11 +28,13 @@ MODELS = "models"
 
 
 def done(run: Run, out: Path) -> bool:
-    """Whether ``run``'s result file under ``out`` is there and complete."""
+    """Whether ``run``'s result file under ``out`` is there, complete and of the run's budget (a
+    file of another budget is the result of an earlier protocol: the run is made again)."""
     try:
-        return "final" in read_results(run.path(out))["figures"]
+        figures = read_results(run.path(out))["figures"]
     except (FileNotFoundError, InvalidArgumentError, json.JSONDecodeError):
         return False
+    return "final" in figures and figures.get("budget") == run.budget
 
 
 def missing(runs: list[Run], out: Path) -> list[Run]:

@@ -18,6 +18,7 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.vec_env import DummyVecEnv
 
 import netgym  # noqa: F401  (registers the ids make_vec_env makes)
+from agents.asymmetric import acting_kwargs
 from agents.baselines.grid import ALGORITHMS, CURVE_POINTS, FINAL_SEED, Run
 from agents.evaluation import CaptureRate, evaluate
 from agents.hyperparams import action_noise, algorithm_kwargs, load, yml
@@ -74,7 +75,7 @@ def _reference(run: Run) -> dict[str, Any]:
 
 def _learner(run: Run, models: Path | None) -> dict[str, Any]:
     """Train the algorithm with its yml's settings for the id, recording the curve; save the model
-    under ``models`` (if given); evaluate."""
+    under ``models`` (if given); evaluate (without the training-only env arguments)."""
     settings = load(yml(run.algorithm), run.env_id)
     module, name = ALGORITHMS[run.algorithm]
     algorithm = getattr(importlib.import_module(module), name)
@@ -85,13 +86,14 @@ def _learner(run: Run, models: Path | None) -> dict[str, Any]:
     model = algorithm(settings["policy"], env, seed=run.seed, device="cpu", verbose=0,
                       **({"action_noise": noise} if noise is not None else {}), **algorithm_kwargs(settings))
     record_env(model, run.env_id)
+    acting = acting_kwargs(env_kwargs)
     curve = CaptureCurve(max(1, run.budget // CURVE_POINTS), run.curve_episodes, float("inf"), None,
-                         env_id=run.env_id, env_kwargs=env_kwargs)
+                         env_id=run.env_id, env_kwargs=acting)
     model.learn(run.budget, callback=curve)
     env.close()
     if models is not None:
         model.save(models / f"{run.name}.zip")
-    rate = evaluate(model, run.final_episodes, seed=FINAL_SEED, env_id=run.env_id, **env_kwargs)
+    rate = evaluate(model, run.final_episodes, seed=FINAL_SEED, env_id=run.env_id, **acting)
     return {"env_steps": model.num_timesteps, "hyperparams": settings, "train_s": curve.points[-1][2],
             "curve": {"episodes": run.curve_episodes, "seed": curve.seed, "points": curve.points},
             "final": _final(rate, run.final_episodes)}

@@ -117,13 +117,15 @@ def test_grid_refuses_unknown_names() -> None:
         grid(ids=["CartPole-v1"])
 
 
-def test_a_run_is_done_only_with_a_complete_result_file(tmp_path: Path) -> None:
+def test_a_run_is_done_only_with_a_complete_result_file_of_its_budget(tmp_path: Path) -> None:
     run = grid(quick=True)[0]
     assert missing([run], tmp_path) == [run]
     run.path(tmp_path).parent.mkdir(parents=True)
     run.path(tmp_path).write_text('{"figures": {"fin')  # cut short: never what write_results leaves
     assert not done(run, tmp_path)
-    write_results(run.path(tmp_path), {"final": {"rate": 1.0}})
+    write_results(run.path(tmp_path), {"budget": run.budget + 512, "final": {"rate": 1.0}})  # an earlier protocol's
+    assert not done(run, tmp_path)
+    write_results(run.path(tmp_path), {"budget": run.budget, "final": {"rate": 1.0}})
     assert done(run, tmp_path) and missing([run], tmp_path) == []
 
 
@@ -131,7 +133,7 @@ def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, mon
     from agents.baselines import runner
 
     failing, passing = grid(quick=True)[:2]
-    outcomes = [(failing, ValueError("boom")), (passing, {"final": {"rate": 1.0}, "wall_s": 1.0})]
+    outcomes = [(failing, ValueError("boom")), (passing, {"budget": passing.budget, "final": {"rate": 1.0}, "wall_s": 1.0})]
     monkeypatch.setattr(runner, "_local", lambda runs, workers, models: iter(outcomes))
     lines: list[str] = []
     with pytest.raises(RuntimeError, match=failing.name):
