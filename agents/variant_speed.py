@@ -27,6 +27,7 @@ from tqdm import tqdm
 import netgym
 from agents.oracle import BallisticOracle
 from netgym.bench.speed.speed_table import BASE_ID
+from netgym.config import SceneConfig
 
 POLICIES = ("oracle", "random")
 VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCatchPixels-v0")
@@ -69,10 +70,10 @@ class SpeedRow:
     left_out: int = 0
 
 
-def _chooser(policy: str, env: gym.Env, seed: int) -> Callable[[np.ndarray], np.ndarray]:
-    """The action for an observation: the ballistic oracle of the env's scene, or random actions."""
+def _chooser(policy: str, scene: SceneConfig, seed: int) -> Callable[[np.ndarray], np.ndarray]:
+    """The action for an observation: the ballistic oracle of ``scene``, or random actions."""
     if policy == "oracle":
-        oracle = BallisticOracle(env.unwrapped.scene)
+        oracle = BallisticOracle(scene)
         return lambda obs: oracle.predict(obs)[0]
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, 3).astype(np.float32)
@@ -84,6 +85,7 @@ class _Timing:
     def __init__(self, env_id: str, policy: str) -> None:
         self.env_id, self.policy = env_id, policy
         self.env = gym.make(env_id, disable_env_checker=True)
+        self.scene = self.env.unwrapped.scene   # as registered: the oracle is blind to each episode's draws
         self.steps: list[float] = []
         self.resets: list[float] = []
         self.caught = 0
@@ -93,7 +95,7 @@ class _Timing:
 
     def run_episodes(self, episodes: int, seed: int, timed: bool = True) -> None:
         """Run ``episodes`` episodes seeded ``seed, seed + 1, ...``, timing each call."""
-        choose = _chooser(self.policy, self.env, seed)
+        choose = _chooser(self.policy, self.scene, seed)
         for episode in range(episodes):
             compiled, start = COMPILATIONS.count, time.perf_counter()
             obs, _ = self.env.reset(seed=seed + episode)
