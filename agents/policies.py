@@ -27,10 +27,10 @@ SHIPPED_BASELINES = {"sac_goal.zip": "sac/NetCatchGoal-v0/seed_0",
                      "sac_noisy.zip": "sac/NetCatchNoisy-v0/seed_0",
                      "tqc_windy.zip": "tqc/NetCatchWindy-v0/seed_5",
                      "ppo_longepisode.zip": "ppo/NetCatchLongEpisode-v0/seed_4",
-                     "rppo_randomized_v1.zip": "rppo/NetCatchRandomized-v1/seed_0"}
+                     "rppo_randomized_v1.zip": "rppo/NetCatchRandomized-v1/seed_0",
+                     "sac_asym_pixels.zip": "sac_asym/NetCatchPixels-v0/seed_0"}
 """The baselines' models shipped in ``agents/pretrained/``: each file's run (algorithm/env id/seed,
-its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRETRAINED`; the pixel
-task has none that learned."""
+its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRETRAINED`."""
 
 
 CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")
@@ -70,7 +70,8 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str | None =
                                 f"checkpoint folder")
     algorithm = by_name[(algorithm or saved_algorithm(name)).upper()]
     contrib = algorithm in CONTRIB_ALGORITHMS
-    module = "sb3_contrib" if contrib else "agents.asymmetric" if algorithm in AGENTS_ALGORITHMS else "stable_baselines3"
+    module = ("sb3_contrib" if contrib else "agents.asymmetric" if algorithm in AGENTS_ALGORITHMS
+              else "stable_baselines3")
     try:
         package = importlib.import_module(module)
     except ImportError as missing:

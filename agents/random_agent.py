@@ -15,7 +15,7 @@ class RandomAgent:
         self.rng = np.random.default_rng(seed)
 
     def predict(self, observation: np.ndarray, state=None, episode_start=None, deterministic: bool = True):
-        """Random action(s) for one observation or a batch."""
+        """Random action(s) for one observation (a vector, or an H x W x 3 image) or a batch of them."""
         obs = np.asarray(observation)
-        shape = (obs.shape[0], 3) if obs.ndim > 1 else (3,)
+        shape = (obs.shape[0], 3) if obs.ndim in (2, 4) else (3,)
         return self.rng.uniform(-1.0, 1.0, shape).astype(np.float32), state

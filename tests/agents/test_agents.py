@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from agents.evaluation import evaluate, wilson_interval
@@ -26,6 +27,15 @@ def test_oracle_captures_over_90_percent_of_a_few_hundred_throws(scene: str) -> 
 def test_random_policy_rarely_captures() -> None:
     result = evaluate(load_policy("random"), episodes=40, seed=500)
     assert result.rate < 0.2, str(result)
+
+
+@pytest.mark.parametrize("single", [(7,), (84, 84, 3)])
+def test_random_policy_gives_one_action_an_observation_and_one_a_row_of_a_batch(single: tuple[int, ...]) -> None:
+    from agents.random_agent import RandomAgent
+
+    agent = RandomAgent(0)
+    assert agent.predict(np.zeros(single))[0].shape == (3,)
+    assert agent.predict(np.zeros((5, *single)))[0].shape == (5, 3)
 
 
 def test_wilson_interval_matches_known_values() -> None:
@@ -129,7 +139,6 @@ def test_policy_kwargs_are_parsed_not_evaluated(text: str) -> None:
 def test_frame_stack_policy_sees_what_vec_frame_stack_gives_the_model() -> None:
     """Acting in one plain env, FrameStackPolicy hands the model exactly the stacked
     observations SB3's VecFrameStack gave it in training, across an episode boundary."""
-    import numpy as np
     from stable_baselines3.common.vec_env import DummyVecEnv, VecFrameStack
 
     from agents.policies import FrameStackPolicy
@@ -179,7 +188,6 @@ def test_a_model_saved_without_its_env_is_matched_by_its_observations(size: int,
     """The default env where it fits; ids whose observations it reads alike are named, not guessed."""
     from types import SimpleNamespace
 
-    import numpy as np
     from gymnasium import spaces
 
     model = SimpleNamespace(observation_space=spaces.Box(-1.0, 1.0, (size,), np.float32))

@@ -72,7 +72,8 @@ def test_the_critics_read_the_state_alone(model: AsymmetricSAC, training_env: gy
 
 def test_actor_and_critics_cannot_share_a_features_extractor(training_env: gym.Env) -> None:
     with pytest.raises(InvalidArgumentError, match="share_features_extractor"):
-        AsymmetricSAC("AsymmetricCnnPolicy", training_env, buffer_size=8, policy_kwargs=dict(share_features_extractor=True))
+        AsymmetricSAC("AsymmetricCnnPolicy", training_env, buffer_size=8,
+                      policy_kwargs=dict(share_features_extractor=True))
     assert AsymmetricSAC.policy_aliases["AsymmetricCnnPolicy"] is AsymmetricSACPolicy
 
 

@@ -1,0 +1,54 @@
+"""Ship a baseline's model: of one algorithm's runs on one env id, the model that catches the
+most throws of fresh episodes (seeds 50000, ...: neither training's nor the table's), written to
+``agents/pretrained/`` without its optimizers' state (Adam's moments are as large as the
+weights; a shipped model is for acting, and training it further starts its optimizers afresh).
+The runs' models are those ``scripts/baselines.py`` saved under ``OUT/models/``.
+
+Usage::
+
+    python scripts/ship_model.py sac_asym NetCatchPixels-v0 sac_asym_pixels.zip
+"""
+
+from __future__ import annotations
+
+import argparse
+from operator import attrgetter
+from pathlib import Path
+
+from agents.baselines.runner import MODELS
+from agents.evaluation import evaluate
+from agents.policies import PRETRAINED, load_policy
+
+SELECTION_SEED = 50_000
+
+
+def main() -> None:
+    """Parse arguments, evaluate every saved seed, write the best one's model."""
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("algorithm", help="the algorithm's name in the baselines (its yml's name), e.g. sac_asym")
+    parser.add_argument("env_id", help="the registered id its runs trained on")
+    parser.add_argument("name", help="the file name in agents/pretrained/")
+    parser.add_argument("--out", type=Path, default=Path("docs/results/baselines"), help="the baselines' folder")
+    parser.add_argument("--episodes", type=int, default=400, help="fresh episodes each saved model is evaluated on")
+    args = parser.parse_args()
+    models = sorted((args.out / MODELS / args.algorithm / args.env_id).glob("seed_*.zip"),
+                    key=lambda path: int(path.stem.removeprefix("seed_")))
+    if not models:
+        raise SystemExit(f"no saved models under {args.out / MODELS / args.algorithm / args.env_id}")
+    rates = {}
+    for path in models:
+        rates[path] = evaluate(load_policy(path), args.episodes, seed=SELECTION_SEED, progress=path.stem,
+                               env_id=args.env_id)
+        print(f"{path.stem}: {rates[path]}")
+    best = max(models, key=lambda path: rates[path].rate)   # the lowest seed of a tie
+    model = load_policy(best)
+    for name in model.get_parameters():
+        if name.endswith("optimizer"):
+            attrgetter(name)(model).state.clear()
+    target = PRETRAINED.parent / args.name
+    model.save(target)
+    print(f"wrote {target} ({best.stem}, {target.stat().st_size / 1e6:.1f} MB)")
+
+
+if __name__ == "__main__":
+    main()
