@@ -106,8 +106,13 @@ class ThrowerView(gym.ObservationWrapper):
 
 
 def thrower_view_env(size: int = 84, with_state: bool = False, **kwargs: Any) -> gym.Env:
-    """A NetCatch env (``kwargs``) with :class:`ThrowerView` pixel observations (``size``,
-    ``with_state``)."""
+    """A NetCatch env (``kwargs``) with :class:`ThrowerView` pixel observations.
+
+    :param size: image side in pixels.
+    :param with_state: True: each observation is a Dict of the image (``"pixels"``) and the
+        vector observation (``"state"``), for training critics on the state while the policy acts
+        on the image alone (``agents/asymmetric.py``).
+    """
     from netgym.envs import NetCatchEnv
 
     return ThrowerView(NetCatchEnv(**kwargs), size, with_state=with_state)

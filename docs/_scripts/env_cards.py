@@ -12,7 +12,9 @@ Usage::
 
 from __future__ import annotations
 
+import importlib
 import inspect
+import re
 import sys
 import warnings
 from pathlib import Path
@@ -63,6 +65,20 @@ def _kwargs_text(kwargs: dict, short: bool = False) -> str:
                      for name, value in kwargs.items())
 
 
+def entry_point_arguments(entry_point: str) -> str:
+    """The arguments an id's entry point takes besides NetCatchEnv's (a wrapper's), as a table
+    of their defaults and ``:param`` texts; empty when the entry point is NetCatchEnv."""
+    module, name = entry_point.split(":")
+    function = getattr(importlib.import_module(module), name)
+    if function is NetCatchEnv:
+        return ""
+    texts = dict(re.findall(r":param (\w+): (.+?)(?=\n:param|\Z)", inspect.getdoc(function), re.S))
+    named = [p for p in inspect.signature(function).parameters.values() if p.kind is not p.VAR_KEYWORD]
+    rows = [f"| ``{p.name}`` | {p.default!r} | {' '.join(texts.get(p.name, '').split())} |" for p in named]
+    return plain_roles(f"Its entry point, `{entry_point}`, also takes:\n\n"
+                       "| argument | default | meaning |\n|---|---|---|\n" + "\n".join(rows))
+
+
 def env_card(env_id: str) -> str:
     """The markdown page of ``env_id``: a header table, the poster and Gymnasium's eight sections,
     the spaces and what the id varies read from the env it makes."""
@@ -101,6 +117,7 @@ def env_card(env_id: str) -> str:
         "## Info", "", docs.get("Info", ""), "",
         "## Arguments", "", f"This id is registered with {_kwargs_text(entry.kwargs)}. Any argument below can be "
         f"passed to `gymnasium.make(\"{env_id}\", ...)`.", "", docs["Arguments"], "",
+        *([wrapper, ""] if (wrapper := entry_point_arguments(spec.entry_point)) else []),
         "## Version History", "", docs["Version History"], "",
     ]
     env.close()
