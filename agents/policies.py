@@ -7,6 +7,7 @@ import importlib
 import json
 import zipfile
 from collections.abc import Callable
+from operator import attrgetter
 from pathlib import Path
 from typing import Any
 
@@ -78,6 +79,21 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str | None =
         extra = 'sb3-contrib: pip install -e ".[baselines]"' if contrib else TRAIN_EXTRA
         raise ImportError(f"loading the saved model {str(name)!r} needs {extra}") from missing
     return getattr(package, algorithm).load(str(name), device="cpu")
+
+
+def for_acting(model: Any) -> None:
+    """Drop from a Stable-Baselines3 ``model`` what only training reads, in place, its actions
+    unchanged: its optimizers' state (Adam's moments are as large as the weights) and its target
+    networks' own weights (each then shares the weights of the network it follows, as SB3 starts
+    them), so that a shipped file holds little more than the policy."""
+    for name in model.get_parameters():
+        if name.endswith("optimizer"):
+            attrgetter(name)(model).state.clear()
+    for online in ("actor", "critic"):
+        target = getattr(model.policy, f"{online}_target", None)
+        if target is not None:
+            for follower, leader in zip(target.parameters(), getattr(model.policy, online).parameters()):
+                follower.data = leader.data
 
 
 def policy_in_env(name: str | Path, env_id: str | None = None,

@@ -1,7 +1,7 @@
 """Ship a baseline's model: of one algorithm's runs on one env id, the model that catches the
 most throws of fresh episodes (seeds 50000, ...: neither training's nor the table's), written to
-``agents/pretrained/`` without its optimizers' state (Adam's moments are as large as the
-weights; a shipped model is for acting, and training it further starts its optimizers afresh).
+``agents/pretrained/`` without what only training reads (:func:`~agents.policies.for_acting`: a
+shipped model is for acting; training it further starts its optimizers afresh).
 The runs' models are those ``scripts/baselines.py`` saved under ``OUT/models/``.
 
 Usage::
@@ -12,12 +12,11 @@ Usage::
 from __future__ import annotations
 
 import argparse
-from operator import attrgetter
 from pathlib import Path
 
 from agents.baselines.runner import MODELS
 from agents.evaluation import evaluate
-from agents.policies import PRETRAINED, load_policy
+from agents.policies import PRETRAINED, for_acting, load_policy
 
 SELECTION_SEED = 50_000
 
@@ -42,9 +41,7 @@ def main() -> None:
         print(f"{path.stem}: {rates[path]}")
     best = max(models, key=lambda path: rates[path].rate)   # the lowest seed of a tie
     model = load_policy(best)
-    for name in model.get_parameters():
-        if name.endswith("optimizer"):
-            attrgetter(name)(model).state.clear()
+    for_acting(model)
     target = PRETRAINED.parent / args.name
     model.save(target)
     print(f"wrote {target} ({best.stem}, {target.stat().st_size / 1e6:.1f} MB)")

@@ -91,3 +91,24 @@ def test_a_saved_model_loads_by_its_name_and_acts_in_the_pixel_env(model: Asymme
     image, _ = gym.make(env_id).reset(seed=5)
     assert np.array_equal(policy.predict(image, deterministic=True)[0], model.predict(image, deterministic=True)[0])
     assert evaluate(load_policy(tmp_path / "asym.zip"), 1, env_id=env_id).throws == 3
+
+
+def test_for_acting_drops_what_only_training_reads_and_keeps_the_actions(training_env: gym.Env,
+                                                                        tmp_path: Path) -> None:
+    from agents.policies import for_acting
+
+    trained = AsymmetricSAC("AsymmetricCnnPolicy", training_env, seed=1, buffer_size=64, learning_starts=8,
+                            batch_size=8, policy_kwargs=dict(net_arch=[32, 32]), device="cpu")
+    trained.learn(24)
+    record_env(trained, "NetCatchPixels-v0")
+    image, _ = gym.make("NetCatchPixels-v0").reset(seed=5)
+    action = trained.predict(image, deterministic=True)[0]
+    trained.save(tmp_path / "full.zip")
+    for_acting(trained)
+    trained.save(tmp_path / "acting.zip")
+    assert (tmp_path / "acting.zip").stat().st_size < (tmp_path / "full.zip").stat().st_size
+    reloaded = load_policy(tmp_path / "acting.zip")
+    assert np.array_equal(reloaded.predict(image, deterministic=True)[0], action)
+    assert not reloaded.actor.optimizer.state_dict()["state"] and not reloaded.critic.optimizer.state_dict()["state"]
+    assert all(torch.equal(target, online) for target, online in
+               zip(reloaded.critic_target.parameters(), reloaded.critic.parameters()))
