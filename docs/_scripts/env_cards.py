@@ -12,7 +12,6 @@ Usage::
 
 from __future__ import annotations
 
-import importlib
 import inspect
 import re
 import sys
@@ -20,6 +19,7 @@ import warnings
 from pathlib import Path
 
 import gymnasium as gym
+from gymnasium.envs.registration import load_env_creator
 
 DOCS = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(DOCS.parent), str(DOCS / "_scripts")]
@@ -68,8 +68,7 @@ def _kwargs_text(kwargs: dict, short: bool = False) -> str:
 def entry_point_arguments(entry_point: str) -> str:
     """The arguments an id's entry point takes besides NetCatchEnv's (a wrapper's), as a table
     of their defaults and ``:param`` texts; empty when the entry point is NetCatchEnv."""
-    module, name = entry_point.split(":")
-    function = getattr(importlib.import_module(module), name)
+    function = load_env_creator(entry_point)
     if function is NetCatchEnv:
         return ""
     texts = dict(re.findall(r":param (\w+): (.+?)(?=\n:param|\Z)", inspect.getdoc(function), re.S))
