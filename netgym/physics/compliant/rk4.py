@@ -11,10 +11,10 @@ import math
 
 from netgym.physics.compliant import contacts as cl
 from netgym.physics.compliant import forces
-from netgym.physics.compliant.system import RATE, Z, Z0, Z1, ZLO, ZSUM, copy_listed, freeze, rhs
+from netgym.physics.compliant.system import RATE, Z, Z0, Z1, ZLO, ZSUM, freeze, rhs
 from netgym.physics.kernels.integrators import rk4_accumulate, rk4_combine, rk4_stage_state
 from netgym.physics.kernels.jit import inline_kernel, kernel
-from netgym.physics.kernels.rows import copy_rows
+from netgym.physics.kernels.rows import copy_first_rows, copy_rows
 
 MAX_EVENTS = 256          # events located in one step at most; later ones are stepped over
 LOCATE_ITERATIONS = 100   # trial steps at most per event
@@ -28,11 +28,11 @@ def _rk4(x0, v0, inv_mass, model, net_gravity, h, work, stiffness, x1, v1, z1):
     rows, anchor, count = work.rows, work.anchor, work.contacts.count[0]
     xs, vs, a, xsum, vsum, f = rows[0], rows[1], rows[2], rows[3], rows[4], rows[5]
     z0, z, rate, zsum = anchor[Z0], anchor[Z], anchor[RATE], anchor[ZSUM]
-    copy_listed(z, z0, count)
+    copy_first_rows(z, z0, count)
     rhs(x0, v0, inv_mass, model, net_gravity, work, stiffness, True, f, a)
     copy_rows(xsum, v0)
     copy_rows(vsum, a)
-    copy_listed(zsum, rate, count)
+    copy_first_rows(zsum, rate, count)
     for stage in range(3):
         rk4_stage_state(x0, v0, a, xs, vs, stage, h)
         _anchor_stage(z0, rate, z, count, 0.5 * h if stage < 2 else h)
@@ -196,12 +196,12 @@ def rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness):
         # just past the earliest event: its modes, regions and grips frozen from here
         copy_rows(x0, x1)
         copy_rows(v0, v1)
-        copy_listed(z0, z1, count)
+        copy_first_rows(z0, z1, count)
         freeze(x0, v0, inv_mass, model, work, stiffness, z0, True)
         left *= 1.0 - hi
     copy_rows(x, x1)
     copy_rows(v, v1)
-    copy_listed(z0, z1, count)
+    copy_first_rows(z0, z1, count)
 
 
 @inline_kernel
@@ -209,4 +209,4 @@ def _accept(work, x1, v1, xlo, vlo):
     """Take the trial state (xlo, vlo) and its anchors as the step's end (x1, v1)."""
     copy_rows(x1, xlo)
     copy_rows(v1, vlo)
-    copy_listed(work.anchor[Z1], work.anchor[ZLO], work.contacts.count[0])
+    copy_first_rows(work.anchor[Z1], work.anchor[ZLO], work.contacts.count[0])

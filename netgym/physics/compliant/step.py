@@ -28,9 +28,10 @@ from netgym.physics.compliant import contacts as cl
 from netgym.physics.compliant import grip, split
 from netgym.physics.compliant.imex import imex
 from netgym.physics.compliant.rk4 import rk4_located
-from netgym.physics.compliant.system import RATE, Z, Z0, copy_listed, freeze, rhs
+from netgym.physics.compliant.system import RATE, Z, Z0, freeze, rhs
 from netgym.physics.kernels.integrators import euler_update
 from netgym.physics.kernels.jit import kernel
+from netgym.physics.kernels.rows import copy_first_rows
 
 
 @kernel
@@ -42,7 +43,7 @@ def _euler(x, v, inv_mass, model, net_gravity, h, work, stiffness, symplectic):
     a, f = rows[0], rows[1]
     z0 = anchor[Z0]
     freeze(x, v, inv_mass, model, work, stiffness, z0, True)
-    copy_listed(anchor[Z], z0, count)
+    copy_first_rows(anchor[Z], z0, count)
     rhs(x, v, inv_mass, model, net_gravity, work, stiffness, False, f, a)
     euler_update(x, v, a, h, symplectic)
     rate = anchor[RATE]

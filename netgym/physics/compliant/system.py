@@ -105,10 +105,3 @@ def freeze(x, v, inv_mass, model, work, stiffness, z, breaks):
     cl.regions_from(work.side0, contacts, contacts.mode, contacts.region)
     forces.regrip(x, v, inv_mass, model, contacts, z, stiffness, damping, breaks)
     forces.grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, work.grip0)
-
-
-@inline_kernel
-def copy_listed(rows, source, count):
-    """Copy the first ``count`` rows of ``source`` into ``rows``."""
-    for k in range(count):
-        rows[k, 0], rows[k, 1], rows[k, 2] = source[k, 0], source[k, 1], source[k, 2]

@@ -38,11 +38,17 @@ def copy_row(rows, k, source, j):
     rows[k, 2] = source[j, 2]
 
 
+@inline_kernel
+def copy_first_rows(rows, source, count):
+    """Set the first ``count`` rows to those of ``source``."""
+    for k in range(count):
+        copy_row(rows, k, source, k)
+
+
 @kernel
 def copy_rows(rows, source):
     """Set every row to the same row of ``source`` (of the same shape)."""
-    for k in range(source.shape[0]):
-        copy_row(rows, k, source, k)
+    copy_first_rows(rows, source, source.shape[0])
 
 
 @kernel
