@@ -18,6 +18,7 @@ from gymnasium import spaces
 
 import netgym
 from netgym.errors import InvalidArgumentError
+from netgym.wrappers import ACTING_KEYS
 
 DEFAULT_ENV = "NetCatch-v0"
 SAVED_AS = "netgym_env"
@@ -80,10 +81,12 @@ def vector_counterpart(env_id: str, **env_kwargs: Any) -> tuple[str, dict[str, A
 
 
 def acting_space(model_space: spaces.Space) -> spaces.Space:
-    """What of a model's observations its policy acts on: the ``"pixels"`` of an asymmetric
-    actor-critic's Dict (:mod:`agents.asymmetric`; its critics alone read the ``"state"``), else
-    the whole."""
-    return model_space["pixels"] if isinstance(model_space, spaces.Dict) else model_space
+    """What of a model's observations its policy acts on: the acting key of an asymmetric
+    actor-critic's Dict (``"pixels"`` or ``"observation"``, :mod:`agents.asymmetric`; its critics
+    alone read the ``"state"``), else the whole."""
+    if not isinstance(model_space, spaces.Dict):
+        return model_space
+    return next(model_space[key] for key in ACTING_KEYS if key in model_space.spaces)
 
 
 def frames_fitting(model_space: spaces.Space, env_space: spaces.Space) -> int | None:

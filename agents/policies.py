@@ -24,14 +24,16 @@ from netgym.errors import InvalidArgumentError
 PRETRAINED = Path(__file__).resolve().parent / "pretrained" / "ppo_netcatch.zip"
 PRETRAINED_WINDY = Path(__file__).resolve().parent / "pretrained" / "ppo_windy.zip"  # trained on NetCatchWindy-v0
 PRETRAINED_WINDY_STACKED = Path(__file__).resolve().parent / "pretrained" / "ppo_windy_stack5.zip"  # the same, 5 frames
-SHIPPED_BASELINES = {"sac_goal.zip": "sac/NetCatchGoal-v0/seed_0",
-                     "sac_noisy.zip": "sac/NetCatchNoisy-v0/seed_0",
-                     "tqc_windy.zip": "tqc/NetCatchWindy-v0/seed_5",
-                     "ppo_longepisode.zip": "ppo/NetCatchLongEpisode-v0/seed_4",
-                     "rppo_randomized_v1.zip": "rppo/NetCatchRandomized-v1/seed_0",
-                     "sac_asym_pixels.zip": "sac_asym/NetCatchPixels-v0/seed_0"}
-"""The baselines' models shipped in ``agents/pretrained/``: each file's run (algorithm/env id/seed,
-its result file under ``docs/results/baselines/``). NetCatch-v0's is :data:`PRETRAINED`."""
+SHIPPED_BASELINES = {"sac_goal.zip": "baselines/sac/NetCatchGoal-v0/seed_0",
+                     "sac_noisy.zip": "baselines/sac/NetCatchNoisy-v0/seed_0",
+                     "tqc_windy.zip": "baselines/tqc/NetCatchWindy-v0/seed_5",
+                     "ppo_longepisode.zip": "baselines/ppo/NetCatchLongEpisode-v0/seed_4",
+                     "rppo_randomized_v1.zip": "baselines/rppo/NetCatchRandomized-v1/seed_0",
+                     "sac_asym_pixels.zip": "baselines/sac_asym/NetCatchPixels-v0/seed_0"}
+"""The baselines' models shipped in ``agents/pretrained/``: each file's run, as its result file's
+path under ``docs/results/`` less ``.json`` (``FOLDER/ALGORITHM/ENV_ID/seed_K``: the table's runs
+in ``baselines/``, runs beyond its budget in ``baselines_long/``). NetCatch-v0's is
+:data:`PRETRAINED`."""
 
 
 CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")

@@ -13,6 +13,11 @@ from netgym.errors import InvalidArgumentError
 from netgym.view.video import EpisodeFilm
 
 VIDEO_MODES = {"mp4": "rgb_array_list", "gif": "rgb_array_list", "html": "replay_list"}  # format: render mode
+STATE_KEY = "state"
+"""The key of a training-only Dict observation's privileged part (:class:`ThrowerView` with
+``with_state``, :class:`HiddenState`): critics read it; a policy acts on the other key alone."""
+ACTING_KEYS = ("pixels", "observation")
+"""The keys of what a policy acts on in those Dicts: an image, or the env's own observation."""
 
 
 class RecordEpisodeVideo(gym.Wrapper):
@@ -92,7 +97,7 @@ class ThrowerView(gym.ObservationWrapper):
         self.fov, self.with_state = fov, bool(with_state)
         self.renderer = Renderer(env.unwrapped.sim, size, size, supersample=1)
         image = gym.spaces.Box(0, 255, (size, size, 3), np.uint8)
-        self.observation_space = gym.spaces.Dict({"pixels": image, "state": env.observation_space}) if with_state \
+        self.observation_space = gym.spaces.Dict({"pixels": image, STATE_KEY: env.observation_space}) if with_state \
             else image
 
     def observation(self, observation: np.ndarray) -> np.ndarray | dict[str, np.ndarray]:
@@ -102,7 +107,53 @@ class ThrowerView(gym.ObservationWrapper):
         if self.renderer.camera.eye.tolist() != env.thrower.position.tolist():
             self.renderer.look_from(env.thrower.position, env.sim.opening.centre, self.fov)
         image = self.renderer.draw(env.sim)
-        return {"pixels": image, "state": observation} if self.with_state else image
+        return {"pixels": image, STATE_KEY: observation} if self.with_state else image
+
+
+class HiddenState(gym.Wrapper, gym.utils.RecordConstructorArgs):
+    """Beside each observation, what the episode hides from it: each observation becomes a Dict of
+    ``"observation"`` (as it was) and ``"state"`` (the observation followed by the episode's wind,
+    x and y over the wind range's top speed, and its randomised scene fields, each mapped from its
+    range to [-1, 1]: ``info["wind"]``, ``info["scene_draws"]``). For training critics on what the
+    policy cannot see (:mod:`agents.asymmetric`); the policy acts on the ``"observation"`` alone.
+
+    :param env: a NetCatch env with vector observations.
+    """
+
+    def __init__(self, env: gym.Env) -> None:
+        gym.utils.RecordConstructorArgs.__init__(self)
+        gym.Wrapper.__init__(self, env)
+        if not isinstance(env.observation_space, gym.spaces.Box) or len(env.observation_space.shape) != 1:
+            raise InvalidArgumentError(f"HiddenState wraps vector observations, not {env.observation_space}")
+        base = env.unwrapped
+        self._wind_scale = 0.0 if base.wind_range is None else base.wind_range.high
+        self._ranges = () if base.randomize is None else base.randomize.ranges
+        hidden = (2 if base.wind_range is not None else 0) + len(self._ranges)
+        bounds = env.observation_space
+        state = gym.spaces.Box(np.concatenate([bounds.low, -np.ones(hidden)]).astype(np.float32),
+                               np.concatenate([bounds.high, np.ones(hidden)]).astype(np.float32), dtype=np.float32)
+        self.observation_space = gym.spaces.Dict({"observation": env.observation_space, STATE_KEY: state})
+
+    def hidden(self, info: dict[str, Any]) -> np.ndarray:
+        """The scaled hidden values of the episode ``info`` reports."""
+        wind = np.asarray(info["wind"][:2]) / self._wind_scale if self._wind_scale > 0 else np.zeros(0)
+        draws = [2.0 * (info["scene_draws"][field] - low) / (high - low) - 1.0 if high > low else 0.0
+                 for field, low, high in self._ranges]
+        return np.concatenate([wind, draws])
+
+    def _both(self, observation: np.ndarray, info: dict[str, Any]) -> dict[str, np.ndarray]:
+        state = np.concatenate([observation, self.hidden(info)]).astype(np.float32)
+        return {"observation": observation, STATE_KEY: state}
+
+    def reset(self, **kwargs: Any) -> tuple[dict[str, np.ndarray], dict]:
+        """The env's reset, with the hidden state beside the observation."""
+        observation, info = self.env.reset(**kwargs)
+        return self._both(observation, info), info
+
+    def step(self, action: Any) -> tuple[dict[str, np.ndarray], float, bool, bool, dict]:
+        """The env's step, with the hidden state beside the observation."""
+        observation, reward, terminated, truncated, info = self.env.step(action)
+        return self._both(observation, info), reward, terminated, truncated, info
 
 
 def thrower_view_env(size: int = 84, with_state: bool = False, **kwargs: Any) -> gym.Env:

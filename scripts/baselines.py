@@ -14,6 +14,7 @@ Usage::
     python scripts/baselines.py --out runs/b --algos sac td3 --ids NetCatch-v0 --seeds 0 1
     python scripts/baselines.py --out runs/b --address auto           # on a running Ray cluster
     python scripts/baselines.py --quick --out /tmp/baselines          # about a minute, for CI
+    python scripts/baselines.py --out runs/long --algos sac_asym --ids NetCatchWindy-v0 --budget 184320
     python scripts/baselines.py --report --out docs/results/baselines # the docs' report and figure
 """
 
@@ -35,6 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--algos", nargs="+", choices=list(ALGORITHMS), help="default: all")
     parser.add_argument("--ids", nargs="+", choices=list(BUDGETS), help="default: the table's")
     parser.add_argument("--seeds", nargs="+", type=int, help="default: 0-4 (quick: 0)")
+    parser.add_argument("--budget", type=int, help="the learners' env steps (default: the id's, as the table's)")
     parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local processes (default: one a core)")
     parser.add_argument("--address", help="run on the Ray cluster at this address (e.g. auto) instead")
     parser.add_argument("--quick", action="store_true", help="tiny budgets, one seed, two cheap ids")
@@ -47,7 +49,7 @@ def main() -> None:
     """Parse arguments, run what is missing, write the report."""
     args = build_parser().parse_args()
     if not args.report:
-        runs = grid(args.algos, args.ids, args.seeds, quick=args.quick)
+        runs = grid(args.algos, args.ids, args.seeds, quick=args.quick, budget=args.budget)
         run_missing(runs, args.out, workers=args.workers, address=args.address)
     print(f"wrote {write_report(args.out)}")
 

@@ -7,6 +7,7 @@ The runs' models are those ``scripts/baselines.py`` saved under ``OUT/models/``.
 Usage::
 
     python scripts/ship_model.py sac_asym NetCatchPixels-v0 sac_asym_pixels.zip
+    python scripts/ship_model.py sac_asym NetCatchWindy-v0 sac_asym_windy.zip --out docs/results/baselines_long
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 
 from agents.baselines.runner import MODELS
 from agents.evaluation import evaluate
-from agents.policies import PRETRAINED, for_acting, load_policy
+from agents.policies import PRETRAINED, for_acting, load_policy, policy_in_env
 
 SELECTION_SEED = 50_000
 
@@ -36,8 +37,8 @@ def main() -> None:
         raise SystemExit(f"no saved models under {args.out / MODELS / args.algorithm / args.env_id}")
     rates = {}
     for path in models:
-        rates[path] = evaluate(load_policy(path), args.episodes, seed=SELECTION_SEED, progress=path.stem,
-                               env_id=args.env_id)
+        rates[path] = evaluate(policy_in_env(path, args.env_id)[1], args.episodes, seed=SELECTION_SEED,
+                               progress=path.stem, env_id=args.env_id)
         print(f"{path.stem}: {rates[path]}")
     best = max(models, key=lambda path: rates[path].rate)   # the lowest seed of a tie
     model = load_policy(best)

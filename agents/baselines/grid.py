@@ -90,8 +90,10 @@ class Run:
 
     def command(self, out: Path) -> list[str]:
         """The arguments of ``python`` that run this run alone (if its result file is missing)."""
+        longer = self.budget not in (0, QUICK_BUDGET if self.quick else BUDGETS[self.env_id])
         return ["scripts/baselines.py", "--out", str(out), "--algos", self.algorithm, "--ids", self.env_id,
-                "--seeds", str(self.seed), *(["--quick"] if self.quick else [])]
+                "--seeds", str(self.seed), *(["--quick"] if self.quick else []),
+                *(["--budget", str(self.budget)] if longer else [])]
 
     @property
     def cost(self) -> int:
@@ -100,12 +102,15 @@ class Run:
 
 
 def grid(algorithms: list[str] | None = None, ids: list[str] | None = None, seeds: list[int] | None = None,
-         quick: bool = False) -> list[Run]:
+         quick: bool = False, budget: int | None = None) -> list[Run]:
     """The runs of ``algorithms`` (default: all) on ``ids`` (default: :data:`TABLE_IDS`, in
     quick mode :data:`QUICK_IDS`) that each algorithm has settings for, one per seed (default:
     :data:`SEEDS`, quick :data:`QUICK_SEEDS`), and the reference runs of those ids (one each:
     their policies do not learn). ``quick``: :data:`QUICK_BUDGET` steps and
-    :data:`QUICK_EPISODES` episodes, for smoke tests."""
+    :data:`QUICK_EPISODES` episodes, for smoke tests. ``budget``: the learners' steps instead of
+    the ids' :data:`BUDGETS` (runs beyond the table's protocol, kept in a folder of their own)."""
+    if budget is not None and (not isinstance(budget, int) or budget < 1):
+        raise InvalidArgumentError(f"budget = {budget!r}; allowed: a positive number of environment steps")
     algorithms = list(algorithms or (QUICK_ALGORITHMS if quick else ALGORITHMS))
     ids = list(ids or (QUICK_IDS if quick else TABLE_IDS))
     for name, known, what in ((algorithms, ALGORITHMS, "algorithm"), (ids, BUDGETS, "env id")):
@@ -116,6 +121,6 @@ def grid(algorithms: list[str] | None = None, ids: list[str] | None = None, seed
     runs = [Run(reference, env_id, 0, 0, **episodes) for env_id in ids for reference in REFERENCES]
     for algorithm in algorithms:
         for env_id in (i for i in ids if i in env_ids(yml(algorithm))):
-            budget = QUICK_BUDGET if quick else BUDGETS[env_id]
-            runs += [Run(algorithm, env_id, seed, budget, **episodes) for seed in seeds]
+            steps = budget or (QUICK_BUDGET if quick else BUDGETS[env_id])
+            runs += [Run(algorithm, env_id, seed, steps, **episodes) for seed in seeds]
     return runs

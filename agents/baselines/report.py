@@ -135,18 +135,19 @@ def _throw_rates(final: dict[str, Any]) -> np.ndarray:
     return np.asarray(final.get("by_throw") or [], dtype=np.float64) / final["episodes"]
 
 
-def shipped(out: Path, models: dict[str, str]) -> str:
+def shipped(results: Path, models: dict[str, str]) -> str:
     """The markdown table of the shipped models ``models`` (file name -> run, as
-    :data:`agents.policies.SHIPPED_BASELINES`), each with its run's final evaluation from its
-    result file under ``out``: the capture rate and, on tasks with feedback, throw 1 and the rest."""
-    lines = ["| agents/pretrained/ | env id | algorithm, seed | capture rate (held-out episodes) | throw 1 | later throws |",
-             "|---|---|---|---:|---:|---:|"]
+    :data:`agents.policies.SHIPPED_BASELINES`), each with its run's budget and final evaluation
+    from its result file under ``results``: the capture rate and, on tasks with feedback, throw 1
+    and the rest."""
+    lines = ["| agents/pretrained/ | env id | algorithm, seed | budget (steps) | capture rate (held-out episodes) "
+             "| throw 1 | later throws |", "|---|---|---|---:|---:|---:|---:|"]
     for name, run in models.items():
-        record = read_results(out / f"{run}.json")["figures"]
+        record = read_results(results / f"{run}.json")["figures"]
         final, rates = record["final"], _throw_rates(record["final"])
         first, later = ("-", "-") if len(rates) < 2 else (f"{100 * rates[0]:.1f}%", f"{100 * rates[1:].mean():.1f}%")
         lines.append(f"| `{name}` | {record['env_id']} | {record['algorithm']}, seed {record['seed']} | "
-                     f"{100 * final['rate']:.1f}% | {first} | {later} |")
+                     f"{record['budget']:,} | {100 * final['rate']:.1f}% | {first} | {later} |")
     return "\n".join(lines)
 
 

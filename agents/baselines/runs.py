@@ -15,15 +15,16 @@ from pathlib import Path
 from typing import Any
 
 from stable_baselines3.common.env_util import make_vec_env
-from stable_baselines3.common.vec_env import DummyVecEnv
+from stable_baselines3.common.vec_env import DummyVecEnv, VecFrameStack
 
 import netgym  # noqa: F401  (registers the ids make_vec_env makes)
 from agents.asymmetric import acting_kwargs
 from agents.baselines.grid import ALGORITHMS, CURVE_POINTS, FINAL_SEED, Run
 from agents.evaluation import CaptureRate, evaluate
-from agents.hyperparams import action_noise, algorithm_kwargs, load, yml
+from agents.hyperparams import action_noise, algorithm_kwargs, env_wrapper, load, yml
 from agents.model_env import record_env, vector_counterpart
 from agents.oracle import BallisticOracle, InformedOracle
+from agents.policies import acting_policy
 from agents.random_agent import RandomAgent
 from agents.training import TRAINER_THREADS, CaptureCurve, torch_threads
 
@@ -74,26 +75,28 @@ def _reference(run: Run) -> dict[str, Any]:
 
 
 def _learner(run: Run, models: Path | None) -> dict[str, Any]:
-    """Train the algorithm with its yml's settings for the id, recording the curve; save the model
-    under ``models`` (if given); evaluate (without the training-only env arguments)."""
+    """Train the algorithm with its yml's settings for the id (its ``env_wrapper`` and
+    ``frame_stack`` too), recording the curve; save the model under ``models`` (if given);
+    evaluate (without the training-only env arguments and wrapper)."""
     settings = load(yml(run.algorithm), run.env_id)
     module, name = ALGORITHMS[run.algorithm]
     algorithm = getattr(importlib.import_module(module), name)
-    env_kwargs = settings.get("env_kwargs", {})
+    env_kwargs, frames = settings.get("env_kwargs", {}), settings.get("frame_stack", 1)
     env = make_vec_env(run.env_id, n_envs=settings.get("n_envs", 1), seed=run.seed, vec_env_cls=DummyVecEnv,
-                       env_kwargs=env_kwargs)
+                       env_kwargs=env_kwargs, wrapper_class=env_wrapper(settings))
+    env = VecFrameStack(env, frames) if frames > 1 else env
     noise = action_noise(settings, env.action_space.shape[0])
     model = algorithm(settings["policy"], env, seed=run.seed, device="cpu", verbose=0,
                       **({"action_noise": noise} if noise is not None else {}), **algorithm_kwargs(settings))
-    record_env(model, run.env_id)
+    record_env(model, run.env_id, frames)
     acting = acting_kwargs(env_kwargs)
     curve = CaptureCurve(max(1, run.budget // CURVE_POINTS), run.curve_episodes, float("inf"), None,
-                         env_id=run.env_id, env_kwargs=acting)
+                         env_id=run.env_id, frame_stack=frames, env_kwargs=acting)
     model.learn(run.budget, callback=curve)
     env.close()
     if models is not None:
         model.save(models / f"{run.name}.zip")
-    rate = evaluate(model, run.final_episodes, seed=FINAL_SEED, env_id=run.env_id, **acting)
+    rate = evaluate(acting_policy(model, frames), run.final_episodes, seed=FINAL_SEED, env_id=run.env_id, **acting)
     return {"env_steps": model.num_timesteps, "hyperparams": settings, "train_s": curve.points[-1][2],
             "curve": {"episodes": run.curve_episodes, "seed": curve.seed, "points": curve.points},
             "final": _final(rate, run.final_episodes)}

@@ -21,11 +21,12 @@ import numpy as np
 import yaml
 
 from netgym.errors import InvalidArgumentError
+from netgym.wrappers import HiddenState
 
 HERE = Path(__file__).resolve().parent
 PPO_YML = HERE / "ppo.yml"
 ENV_ID = "NetCatch-v0"
-ZOO_ONLY = ("n_envs", "n_timesteps", "policy", "env_kwargs")  # rl_zoo3's run settings, not PPO arguments
+ZOO_ONLY = ("n_envs", "n_timesteps", "policy", "env_kwargs", "env_wrapper", "frame_stack")  # rl_zoo3's run settings
 NOISE = ("noise_type", "noise_std")  # rl_zoo3's action noise of off-policy algorithms, see action_noise
 # SB3 name -> RLlib PPOConfig.training name. Not mapped: clip_range, batch sizes and net_arch
 # (train_rllib.py has always run with RLlib's own clip_param, its --batch option and RLlib's
@@ -81,6 +82,22 @@ def action_noise(settings: dict[str, Any], n_actions: int) -> Any:
     if kind not in kinds:
         raise InvalidArgumentError(f"noise_type = {kind!r} is not one of {list(kinds)}")
     return kinds[kind](mean=np.zeros(n_actions), sigma=settings["noise_std"] * np.ones(n_actions))
+
+
+TRAINING_WRAPPERS = {"netgym.wrappers.HiddenState": HiddenState}
+"""The wrappers an ``env_wrapper`` setting may name: they show training what acting does not
+see, so a trained policy is evaluated without them."""
+
+
+def env_wrapper(settings: dict[str, Any]) -> type[HiddenState] | None:
+    """The training wrapper that rl_zoo3's ``env_wrapper`` setting names (its dotted class name,
+    one of :data:`TRAINING_WRAPPERS`), or None when the settings have none."""
+    name = settings.get("env_wrapper")
+    if name is None:
+        return None
+    if name not in TRAINING_WRAPPERS:
+        raise InvalidArgumentError(f"env_wrapper = {name!r} is not one of {list(TRAINING_WRAPPERS)}")
+    return TRAINING_WRAPPERS[name]
 
 
 SETTINGS = load()

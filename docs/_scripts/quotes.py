@@ -270,7 +270,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),
     "baselines-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES)),
-    "baselines-shipped": lambda: baselines.shipped(BASELINES, SHIPPED_BASELINES),
+    "baselines-shipped": lambda: baselines.shipped(RESULTS, SHIPPED_BASELINES),
     "baselines-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES), "NetCatchWindy-v0"),
     "baselines-by-throw-randomized": lambda: baselines.by_throw(baselines.load_cells(BASELINES),
                                                                 "NetCatchRandomized-v1"),

@@ -1,6 +1,6 @@
-"""The asymmetric actor-critic for pixels (agents/asymmetric.py): the policy acts on the image
-alone, the critics read the state alone, the training env returns both, and a saved model acts in
-NetCatchPixels-v0 as the table's other models do."""
+"""The asymmetric actor-critic (agents/asymmetric.py): the policy acts on the image, or on the
+observation, alone; the critics read the state alone; the training envs return both; the target
+entropy falls as asked; a saved model acts in NetCatchPixels-v0 as the table's other models do."""
 
 from __future__ import annotations
 
@@ -11,25 +11,37 @@ import numpy as np
 import pytest
 import torch
 from gymnasium.utils.env_checker import check_env
+from stable_baselines3.common.callbacks import BaseCallback
 
 import netgym  # noqa: F401
-from agents.asymmetric import AsymmetricSAC, AsymmetricSACPolicy, acting_kwargs
+from agents.asymmetric import AsymmetricSAC, AsymmetricSACPolicy, acting_key, acting_kwargs
 from agents.evaluation import evaluate
 from agents.model_env import record_env
 from agents.policies import load_policy, policy_in_env, saved_algorithm
 from netgym.errors import InvalidArgumentError
-from netgym.wrappers import thrower_view_env
+from netgym.wrappers import HiddenState, thrower_view_env
+
+TRAINING_ENVS = {"pixels": lambda: gym.make("NetCatchPixels-v0", with_state=True),
+                 "observation": lambda: HiddenState(gym.make("NetCatchWindy-v0"))}
+POLICIES = {"pixels": "AsymmetricCnnPolicy", "observation": "AsymmetricMlpPolicy"}
 
 
 @pytest.fixture(scope="module")
 def training_env() -> gym.Env:
-    return gym.make("NetCatchPixels-v0", with_state=True)
+    return TRAINING_ENVS["pixels"]()
 
 
 @pytest.fixture(scope="module")
 def model(training_env: gym.Env) -> AsymmetricSAC:
     return AsymmetricSAC("AsymmetricCnnPolicy", training_env, seed=0, buffer_size=64, learning_starts=8,
                          batch_size=8, policy_kwargs=dict(net_arch=[32, 32]), device="cpu")
+
+
+@pytest.fixture(scope="module", params=sorted(TRAINING_ENVS))
+def env_and_model(request: pytest.FixtureRequest) -> tuple[gym.Env, AsymmetricSAC]:
+    env = TRAINING_ENVS[request.param]()
+    return env, AsymmetricSAC(POLICIES[request.param], env, seed=0, buffer_size=64, learning_starts=8, batch_size=8,
+                              policy_kwargs=dict(net_arch=[32, 32]), device="cpu")
 
 
 @pytest.mark.filterwarnings("ignore:.*is different from the unwrapped version")  # ThrowerView is a wrapper
@@ -47,27 +59,79 @@ def test_with_state_must_be_a_flag() -> None:
         thrower_view_env(with_state="yes")
 
 
-def test_the_policy_acts_on_the_image_alone(model: AsymmetricSAC, training_env: gym.Env) -> None:
-    obs, _ = training_env.reset(seed=5)
+def test_the_policy_acts_on_what_the_env_shows_alone(env_and_model: tuple[gym.Env, AsymmetricSAC]) -> None:
+    env, model = env_and_model
+    key = acting_key(env.observation_space)
+    obs, _ = env.reset(seed=5)
     action, _ = model.predict(obs, deterministic=True)
-    other_state = {"pixels": obs["pixels"], "state": np.random.default_rng(0).normal(size=obs["state"].shape)}
+    other_state = {key: obs[key], "state": np.random.default_rng(0).normal(size=obs["state"].shape)}
     assert np.array_equal(model.predict(other_state, deterministic=True)[0], action)
-    assert np.array_equal(model.predict(obs["pixels"], deterministic=True)[0], action)
-    other_image, _ = training_env.reset(seed=6)
-    assert not np.array_equal(model.predict(other_image["pixels"], deterministic=True)[0], action)
+    assert np.array_equal(model.predict(obs[key], deterministic=True)[0], action)
+    other, _ = env.reset(seed=6)
+    assert not np.array_equal(model.predict(other[key], deterministic=True)[0], action)
 
 
-def test_the_critics_read_the_state_alone(model: AsymmetricSAC, training_env: gym.Env) -> None:
-    obs, _ = training_env.reset(seed=5)
-    other, _ = training_env.reset(seed=6)
+def test_the_critics_read_the_state_alone(env_and_model: tuple[gym.Env, AsymmetricSAC]) -> None:
+    env, model = env_and_model
+    key = acting_key(env.observation_space)
+    obs, _ = env.reset(seed=5)
+    other, _ = env.reset(seed=6)
     action = torch.zeros((1, 3))
 
-    def values(pixels: np.ndarray, state: np.ndarray) -> torch.Tensor:
-        tensors, _ = model.policy.obs_to_tensor({"pixels": pixels, "state": state})
+    def values(seen: np.ndarray, state: np.ndarray) -> torch.Tensor:
+        tensors, _ = model.policy.obs_to_tensor({key: seen, "state": state})
         return torch.cat(model.critic(tensors, action))
 
-    assert torch.equal(values(obs["pixels"], obs["state"]), values(other["pixels"], obs["state"]))
-    assert not torch.equal(values(obs["pixels"], obs["state"]), values(obs["pixels"], other["state"]))
+    assert torch.equal(values(obs[key], obs["state"]), values(other[key], obs["state"]))
+    assert not torch.equal(values(obs[key], obs["state"]), values(obs[key], other["state"]))
+
+
+@pytest.mark.parametrize("env_id", ["NetCatchWindy-v0", "NetCatchRandomized-v1", "NetCatch-v0"])
+def test_hidden_state_puts_what_the_episode_hides_beside_the_observation(env_id: str) -> None:
+    env = HiddenState(gym.make(env_id))
+    plain = gym.make(env_id)
+    both, info = env.reset(seed=4)
+    assert np.array_equal(both["observation"], plain.reset(seed=4)[0])
+    base = env.unwrapped
+    size = plain.observation_space.shape[0]
+    assert np.array_equal(both["state"][:size], both["observation"])
+    hidden = both["state"][size:]
+    wind = hidden[:2] * base.wind_range.high if base.wind_range is not None else np.zeros(2)
+    np.testing.assert_allclose(wind, info["wind"][:2], rtol=1e-6)
+    ranges = base.randomize.ranges if base.randomize is not None else ()
+    draws = hidden[len(hidden) - len(ranges):]
+    assert np.all(np.abs(draws) <= 1.0)
+    np.testing.assert_allclose([low + (d + 1.0) / 2.0 * (high - low) for d, (_, low, high) in zip(draws, ranges)],
+                               [info["scene_draws"][field] for field, _, _ in ranges], rtol=1e-5)
+    assert len(hidden) == (2 if base.wind_range is not None else 0) + len(ranges)
+    stepped, *_, info = env.step(env.action_space.sample())
+    assert np.array_equal(stepped["state"][size:], hidden) and env.observation_space.contains(stepped)
+
+
+@pytest.mark.filterwarnings("ignore:.*is different from the unwrapped version")
+def test_hidden_state_passes_the_checker_and_refuses_images() -> None:
+    check_env(HiddenState(gym.make("NetCatchWindy-v0").unwrapped))
+    with pytest.raises(InvalidArgumentError, match="vector observations"):
+        HiddenState(gym.make("NetCatchPixels-v0"))
+
+
+def test_the_target_entropy_holds_falls_over_the_middle_third_and_holds() -> None:
+    seen = []
+
+    class Record(BaseCallback):
+        def _on_step(self) -> bool:
+            seen.append((self.num_timesteps, self.model.target_entropy))
+            return True
+
+    env = HiddenState(gym.make("NetCatchWindy-v0"))
+    model = AsymmetricSAC("AsymmetricMlpPolicy", env, seed=0, buffer_size=128, learning_starts=0, batch_size=8,
+                          target_entropy_end=-12.0, policy_kwargs=dict(net_arch=[16, 16]), device="cpu")
+    model.learn(90, callback=Record())
+    by_step = dict(seen)  # the target an env step starts with: the last gradient step's
+    assert by_step[1] == by_step[30] == -3.0 and model.target_entropy == -12.0
+    middle = [by_step[t] for t in range(32, 61)]
+    assert all(a > b for a, b in zip(middle, middle[1:])) and -12.0 < min(middle) and max(middle) < -3.0
+    assert by_step[62] == by_step[90] == -12.0
 
 
 def test_actor_and_critics_cannot_share_a_features_extractor(training_env: gym.Env) -> None:
@@ -112,3 +176,22 @@ def test_for_acting_drops_what_only_training_reads_and_keeps_the_actions(trainin
     assert not reloaded.actor.optimizer.state_dict()["state"] and not reloaded.critic.optimizer.state_dict()["state"]
     assert all(torch.equal(target, online) for target, online in
                zip(reloaded.critic_target.parameters(), reloaded.critic.parameters()))
+
+
+def test_a_windy_run_trains_on_the_hidden_wind_and_acts_on_stacked_observations(tmp_path: Path) -> None:
+    """The table's runner with sac_asym.yml's windy settings: trained on HiddenState's Dicts of 5
+    stacked observations, saved with its frame stack, evaluated on NetCatchWindy-v0's own episodes."""
+    from agents.baselines.grid import Run
+    from agents.baselines.runs import execute
+    from agents.policies import FrameStackPolicy
+
+    run = Run("sac_asym", "NetCatchWindy-v0", 0, 64, final_episodes=2, curve_episodes=1)
+    record = execute(run, models=tmp_path)
+    assert record["env_steps"] == 64 and record["final"]["throws"] == 10 and len(record["final"]["by_throw"]) == 5
+    saved = tmp_path / f"{run.name}.zip"
+    model = load_policy(saved)
+    spaces = model.observation_space
+    assert spaces["observation"].shape == (5 * 11,) and spaces["state"].shape == (5 * 13,)
+    env_id, policy = policy_in_env(saved)
+    assert env_id == "NetCatchWindy-v0" and isinstance(policy, FrameStackPolicy) and policy.n_stack == 5
+    assert tuple(evaluate(policy, 2, seed=10_000, env_id=env_id).by_throw) == tuple(record["final"]["by_throw"])

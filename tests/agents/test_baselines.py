@@ -87,7 +87,12 @@ def test_every_algorithms_settings_are_arguments_of_its_class(algorithm: str) ->
     """Each yml has settings for ids of the grid only, each setting is rl_zoo3's or an argument
     of the algorithm's class, and its noise makes SB3 action noise."""
     module, name = ALGORITHMS[algorithm]
-    parameters = inspect.signature(getattr(importlib.import_module(module), name)).parameters
+    parameters = {}
+    for cls in getattr(importlib.import_module(module), name).__mro__:  # a subclass passes **kwargs on to its base
+        own = inspect.signature(cls).parameters
+        parameters.update(own)
+        if not any(p.kind is inspect.Parameter.VAR_KEYWORD for p in own.values()):
+            break
     assert env_ids(yml(algorithm)) and set(env_ids(yml(algorithm))) <= set(BUDGETS)
     for env_id in env_ids(yml(algorithm)):
         settings = load(yml(algorithm), env_id)
@@ -115,6 +120,27 @@ def test_grid_refuses_unknown_names() -> None:
         grid(["dqn"])
     with pytest.raises(InvalidArgumentError, match="env id"):
         grid(ids=["CartPole-v1"])
+
+
+def test_a_budget_replaces_the_ids_and_a_runs_command_repeats_it() -> None:
+    longer = grid(["sac"], ["NetCatchWindy-v0"], [3], budget=40_960)
+    learner = next(run for run in longer if run.algorithm == "sac")
+    assert learner.budget == 40_960 and all(run.budget == 0 for run in longer if run.algorithm in REFERENCES)
+    assert learner.command(Path("out"))[-2:] == ["--budget", "40960"]
+    table_run = next(run for run in grid(["sac"], ["NetCatchWindy-v0"], [3]) if run.algorithm == "sac")
+    assert "--budget" not in table_run.command(Path("out"))
+    for wrong in (0, -512, 1.5):
+        with pytest.raises(InvalidArgumentError, match="budget"):
+            grid(["sac"], budget=wrong)
+
+
+def test_an_env_wrapper_setting_names_a_training_wrapper() -> None:
+    from agents.hyperparams import env_wrapper
+    from netgym.wrappers import HiddenState
+
+    assert env_wrapper({}) is None and env_wrapper({"env_wrapper": "netgym.wrappers.HiddenState"}) is HiddenState
+    with pytest.raises(InvalidArgumentError, match="env_wrapper"):
+        env_wrapper({"env_wrapper": "os.system"})
 
 
 def test_a_run_is_done_only_with_a_complete_result_file_of_its_budget(tmp_path: Path) -> None:
@@ -283,12 +309,13 @@ def test_every_shipped_baseline_model_is_its_runs_algorithm_on_its_runs_task() -
     from agents.policies import SHIPPED_BASELINES
 
     for name, run in SHIPPED_BASELINES.items():
-        algorithm, env_id, seed = run.split("/")
+        folder, algorithm, env_id, seed = run.split("/")
         path = ROOT / "agents" / "pretrained" / name
         assert path.is_file(), name
         assert saved_algorithm(path) == ALGORITHMS[algorithm][1], name
         assert policy_in_env(path)[0] == env_id, name
-        assert read_results(ROOT / "docs" / "results" / "baselines" / f"{run}.json")["figures"]["seed"] == int(seed[5:])
+        assert folder in ("baselines", "baselines_long"), name
+        assert read_results(ROOT / "docs" / "results" / f"{run}.json")["figures"]["seed"] == int(seed[5:])
 
 
 @pytest.mark.slow
