@@ -132,5 +132,6 @@ class AsymmetricSAC(SAC):
         if self.target_entropy_end is not None:
             done = 1.0 - self._current_progress_remaining
             fall = min(max(3.0 * done - 1.0, 0.0), 1.0)
-            self.target_entropy = self.target_entropy_start + fall * (self.target_entropy_end - self.target_entropy_start)
+            start, end = self.target_entropy_start, self.target_entropy_end
+            self.target_entropy = start + fall * (end - start)
         super().train(gradient_steps, batch_size)

@@ -29,7 +29,8 @@ SHIPPED_BASELINES = {"sac_goal.zip": "baselines/sac/NetCatchGoal-v0/seed_0",
                      "tqc_windy.zip": "baselines/tqc/NetCatchWindy-v0/seed_5",
                      "ppo_longepisode.zip": "baselines/ppo/NetCatchLongEpisode-v0/seed_4",
                      "rppo_randomized_v1.zip": "baselines/rppo/NetCatchRandomized-v1/seed_0",
-                     "sac_asym_pixels.zip": "baselines/sac_asym/NetCatchPixels-v0/seed_0"}
+                     "sac_asym_pixels.zip": "baselines/sac_asym/NetCatchPixels-v0/seed_0",
+                     "sac_asym_windy.zip": "baselines_long/sac_asym/NetCatchWindy-v0/seed_1"}
 """The baselines' models shipped in ``agents/pretrained/``: each file's run, as its result file's
 path under ``docs/results/`` less ``.json`` (``FOLDER/ALGORITHM/ENV_ID/seed_K``: the table's runs
 in ``baselines/``, runs beyond its budget in ``baselines_long/``). NetCatch-v0's is

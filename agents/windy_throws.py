@@ -25,7 +25,8 @@ from tqdm import tqdm
 from agents.baselines.grid import FINAL_SEED
 from agents.evaluation import CaptureRate, Policy, evaluate
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
-from agents.policies import PRETRAINED_WINDY, PRETRAINED_WINDY_STACKED, policy_in_env
+from agents.policies import PRETRAINED, PRETRAINED_WINDY, PRETRAINED_WINDY_STACKED, SHIPPED_BASELINES, policy_in_env
+from netgym.bench.results import RESULTS, read_results
 from netgym.config import SceneConfig
 from netgym.envs import NetCatchEnv
 
@@ -150,12 +151,20 @@ def search_first_throw(plan: SearchPlan = SearchPlan(), progress: bool = True) -
 
 
 def windy_policies() -> dict[str, Policy | Callable[[NetCatchEnv], Policy]]:
-    """The policies evaluated by throw index, by label (loading the shipped PPO models)."""
+    """The policies evaluated by throw index, by label (loading the shipped PPO models and the
+    shipped baselines of the windy task)."""
+    baselines = {}
+    for name, run in SHIPPED_BASELINES.items():
+        record = read_results(RESULTS / f"{run}.json")["figures"]
+        if record["env_id"] == WINDY:
+            label = f"{record['algorithm']} {name} (baseline, {record['budget']:,} steps)"
+            baselines[label] = policy_in_env(PRETRAINED.parent / name, WINDY)[1]
     return {"informed oracle (knows the wind)": InformedOracle,
             "blind oracle (ignores the wind)": lambda env: BallisticOracle(env.scene),
             "adaptive oracle (uses the feedback)": lambda env: AdaptiveOracle(env.scene),
             "PPO ppo_windy.zip (the feedback)": policy_in_env(PRETRAINED_WINDY, WINDY)[1],
-            "PPO ppo_windy_stack5.zip (5 stacked observations)": policy_in_env(PRETRAINED_WINDY_STACKED, WINDY)[1]}
+            "PPO ppo_windy_stack5.zip (5 stacked observations)": policy_in_env(PRETRAINED_WINDY_STACKED, WINDY)[1],
+            **baselines}
 
 
 def per_throw_rates(episodes: int, seed: int = FINAL_SEED, progress: bool = True) -> dict[str, CaptureRate]:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from agents.baselines.runner import MODELS
+from agents.baselines.runner import MODELS, saved_models
 from agents.evaluation import evaluate
 from agents.policies import PRETRAINED, for_acting, load_policy, policy_in_env
 
@@ -31,8 +31,7 @@ def main() -> None:
     parser.add_argument("--out", type=Path, default=Path("docs/results/baselines"), help="the baselines' folder")
     parser.add_argument("--episodes", type=int, default=400, help="fresh episodes each saved model is evaluated on")
     args = parser.parse_args()
-    models = sorted((args.out / MODELS / args.algorithm / args.env_id).glob("seed_*.zip"),
-                    key=lambda path: int(path.stem.removeprefix("seed_")))
+    models = saved_models(args.out, args.algorithm, args.env_id)
     if not models:
         raise SystemExit(f"no saved models under {args.out / MODELS / args.algorithm / args.env_id}")
     rates = {}

@@ -6,7 +6,7 @@ held-out episodes. Prints the table and writes the result file.
 
 Usage::
 
-    python scripts/windy_per_throw.py                      # 100 episodes, docs/results/windy_per_throw.json
+    python scripts/windy_per_throw.py --episodes 1000      # docs/results/windy_per_throw.json (~17 min)
     python scripts/windy_per_throw.py --quick --results /tmp/windy.json   # a smoke test of seconds
 """
 

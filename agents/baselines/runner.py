@@ -23,6 +23,12 @@ from netgym.errors import InvalidArgumentError
 
 PR_SET_PDEATHSIG = 1
 MODELS = "models"
+
+
+def saved_models(out: Path, algorithm: str, env_id: str) -> list[Path]:
+    """The models the runs of ``algorithm`` on ``env_id`` saved under ``out``, by seed."""
+    return sorted((out / MODELS / algorithm / env_id).glob("seed_*.zip"),
+                  key=lambda path: int(path.stem.removeprefix("seed_")))
 """The folder under the output folder where each learner's final model is saved
 (``models/ALGORITHM/ENV_ID/seed_K.zip``; not committed with the result files)."""
 

@@ -36,6 +36,8 @@ TRAINING_CURVE = ROOT / "docs" / "figures" / "ppo_curve.csv"
 SHIPPED_PPO = "PPO ppo_netcatch.zip"
 BASELINES = RESULTS / "baselines"
 """The baselines' result files (``scripts/baselines.py --out docs/results/baselines``)."""
+BASELINES_LONG = RESULTS / "baselines_long"
+"""Runs beyond the table's budget (``scripts/baselines.py --out docs/results/baselines_long --budget N``)."""
 
 
 def _only_row(rows: list[dict], source: str, what: str, match: Callable[[dict], bool]) -> dict:
@@ -253,6 +255,23 @@ def windy_per_throw() -> str:
                       f"({record['written']}, {record['machine']})."])
 
 
+def windy_long_seeds() -> str:
+    """Every long windy run's model by throw on the held-out episodes, beside the best fixed
+    first throw on the same episodes (from ``windy_per_throw.json``)."""
+    from agents.windy_throws import table
+
+    seeds, bound = read_results(RESULTS / "windy_long_seeds.json"), read_results(RESULTS / "windy_per_throw.json")
+    figures, fixed = seeds["figures"], bound["figures"]
+    if (figures["episodes"], figures["seed"]) != (fixed["episodes"], fixed["seed"]):
+        raise ValueError("windy_long_seeds.json and windy_per_throw.json evaluate different episodes")
+    rows = [*figures["rows"], *(row for row in fixed["rows"] if row["policy"].startswith("best fixed first throw"))]
+    return "\n".join([table({**figures, "rows": rows}),
+                      f"\n{figures['episodes']} held-out episodes a row (seeds {figures['seed']}-"
+                      f"{figures['seed'] + figures['episodes'] - 1}). Sources: `docs/results/windy_long_seeds.json`, "
+                      f"written by `{seeds['command']}` ({seeds['written']}); the last row "
+                      "`docs/results/windy_per_throw.json`."])
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "environments": environments,
     "environments-docs": lambda: environments(cards="environments/"),
@@ -274,11 +293,15 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "baselines-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES), "NetCatchWindy-v0"),
     "baselines-by-throw-randomized": lambda: baselines.by_throw(baselines.load_cells(BASELINES),
                                                                 "NetCatchRandomized-v1"),
+    "baselines-long-table": lambda: baselines.table(baselines.load_cells(BASELINES_LONG)),
+    "baselines-long-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES_LONG),
+                                                                "NetCatchWindy-v0"),
     "learning-curve": lambda: learning_curve("ppo_curve"),
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
     "learning-curve-windy-stack5": lambda: learning_curve("ppo_windy_stack5_curve",
                                                           (0, 8192, 16384, 24576, 32768, 40960)),
     "windy-per-throw": windy_per_throw,
+    "windy-long-seeds": windy_long_seeds,
 }
 """How each quoted block is made."""
 

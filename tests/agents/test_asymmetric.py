@@ -4,6 +4,8 @@ entropy falls as asked; a saved model acts in NetCatchPixels-v0 as the table's o
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import gymnasium as gym
@@ -18,12 +20,14 @@ from agents.asymmetric import AsymmetricSAC, AsymmetricSACPolicy, acting_key, ac
 from agents.evaluation import evaluate
 from agents.model_env import record_env
 from agents.policies import load_policy, policy_in_env, saved_algorithm
+from netgym.bench.results import read_results
 from netgym.errors import InvalidArgumentError
 from netgym.wrappers import HiddenState, thrower_view_env
 
 TRAINING_ENVS = {"pixels": lambda: gym.make("NetCatchPixels-v0", with_state=True),
                  "observation": lambda: HiddenState(gym.make("NetCatchWindy-v0"))}
 POLICIES = {"pixels": "AsymmetricCnnPolicy", "observation": "AsymmetricMlpPolicy"}
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")
@@ -182,16 +186,24 @@ def test_a_windy_run_trains_on_the_hidden_wind_and_acts_on_stacked_observations(
     """The table's runner with sac_asym.yml's windy settings: trained on HiddenState's Dicts of 5
     stacked observations, saved with its frame stack, evaluated on NetCatchWindy-v0's own episodes."""
     from agents.baselines.grid import Run
+    from agents.baselines.runner import MODELS
     from agents.baselines.runs import execute
     from agents.policies import FrameStackPolicy
 
     run = Run("sac_asym", "NetCatchWindy-v0", 0, 64, final_episodes=2, curve_episodes=1)
-    record = execute(run, models=tmp_path)
+    record = execute(run, models=tmp_path / MODELS)
     assert record["env_steps"] == 64 and record["final"]["throws"] == 10 and len(record["final"]["by_throw"]) == 5
-    saved = tmp_path / f"{run.name}.zip"
+    saved = tmp_path / MODELS / f"{run.name}.zip"
     model = load_policy(saved)
     spaces = model.observation_space
     assert spaces["observation"].shape == (5 * 11,) and spaces["state"].shape == (5 * 13,)
     env_id, policy = policy_in_env(saved)
     assert env_id == "NetCatchWindy-v0" and isinstance(policy, FrameStackPolicy) and policy.n_stack == 5
     assert tuple(evaluate(policy, 2, seed=10_000, env_id=env_id).by_throw) == tuple(record["final"]["by_throw"])
+    results = tmp_path / "seeds.json"
+    command = ["scripts/seed_rates.py", "sac_asym", "NetCatchWindy-v0", "--out", str(tmp_path), "--episodes", "2",
+               "--results", str(results)]
+    done = subprocess.run([sys.executable, *command], cwd=ROOT, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    (row,) = read_results(results)["figures"]["rows"]
+    assert row["policy"] == "sac_asym seed 0" and tuple(row["by_throw"]) == tuple(record["final"]["by_throw"])

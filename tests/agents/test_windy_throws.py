@@ -18,7 +18,7 @@ from agents.evaluation import evaluate
 from agents.oracle import AdaptiveOracle, BallisticOracle, InformedOracle
 from agents.random_agent import RandomAgent
 from agents.windy_throws import (BLIND_AIM, WINDY, AimedOracle, FirstThrowAim, SearchPlan, first_throw_rate,
-                                 search_first_throw)
+                                 search_first_throw, windy_policies)
 from netgym.bench.results import read_results
 from netgym.envs import ObservationIndex
 
@@ -105,7 +105,8 @@ def test_windy_per_throw_quick_prints_the_table_and_writes_the_result_file(tmp_p
     record = read_results(results)
     figures = record["figures"]
     assert "windy_per_throw.py --quick" in record["command"]
-    assert len(rows) == 1 + len(figures["rows"]) == 7
+    assert len(rows) == 1 + len(figures["rows"]) == 2 + len(windy_policies())  # header, policies, best fixed throw
+    assert any(row["policy"].startswith("sac_asym sac_asym_windy.zip") for row in figures["rows"])
     assert all(sum(row["by_throw"]) == row["captured"] for row in figures["rows"])
     assert [cell.strip() for cell in rows[-1][2:]] == ["-"] * 6  # the best fixed first throw: throw 1 only
     assert figures["first_throw_search"]["best_captured"] >= figures["first_throw_search"]["blind_captured"]

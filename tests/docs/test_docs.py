@@ -119,6 +119,25 @@ def test_quoted_figures_match_their_result_files(tmp_path: Path) -> None:
     assert quotes.stale_blocks(tmp_path) == ["README.md: at-a-glance"]
 
 
+def test_the_baselines_pages_words_on_the_windy_seeds_hold_in_their_result_files() -> None:
+    """docs/baselines.md says of the long windy runs, in words: every seed within a point of the
+    informed oracle on throws 2-5; two of three at or above the best fixed first throw on throw 1,
+    the third less than a point below."""
+    from netgym.bench.results import RESULTS, read_results
+
+    seeds = read_results(RESULTS / "windy_long_seeds.json")["figures"]["rows"]
+    rows = {row["policy"]: row for row in read_results(RESULTS / "windy_per_throw.json")["figures"]["rows"]}
+    informed = rows["informed oracle (knows the wind)"]
+    fixed = next(row for name, row in rows.items() if name.startswith("best fixed first throw"))
+    informed_later = sum(informed["by_throw"][1:]) / (4 * informed["episodes"])
+    assert len(seeds) == 3 and all(row["episodes"] == fixed["episodes"] for row in seeds)
+    assert all(sum(row["by_throw"][1:]) / (4 * row["episodes"]) >= informed_later - 0.01 for row in seeds)
+    gaps = sorted(fixed["by_throw"][0] - row["by_throw"][0] for row in seeds)  # first throws caught fewer
+    assert gaps[0] <= 0 and gaps[1] <= 0 and 0 < gaps[2] < 0.01 * fixed["episodes"]
+    text = " ".join((ROOT / "docs" / "baselines.md").read_text().split())
+    assert "two of the three seeds catch at least as many as the best fixed first throw" in text
+
+
 def test_the_benchmark_report_is_what_its_result_files_render() -> None:
     """docs/BENCHMARKS.md is what ``scripts/report.py --render`` makes of docs/results/report.json
     and the result files sections 10-12 quote, so no hand edit of it outlives the next run."""
