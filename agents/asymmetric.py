@@ -27,7 +27,7 @@ from stable_baselines3.common.torch_layers import BaseFeaturesExtractor, NatureC
 from stable_baselines3.sac.policies import SACPolicy
 
 from netgym.errors import InvalidArgumentError
-from netgym.wrappers import ACTING_KEYS, STATE_KEY
+from netgym.wrappers import STATE_KEY, acting_key
 
 TRAINING_ONLY = ("with_state",)
 """Env arguments of training alone: the policy is evaluated without them, on the images."""
@@ -36,15 +36,6 @@ TRAINING_ONLY = ("with_state",)
 def acting_kwargs(env_kwargs: dict[str, Any]) -> dict[str, Any]:
     """``env_kwargs`` less :data:`TRAINING_ONLY`: the env the trained policy acts in."""
     return {name: value for name, value in env_kwargs.items() if name not in TRAINING_ONLY}
-
-
-def acting_key(observation_space: spaces.Dict) -> str:
-    """The key of the part of an asymmetric Dict observation that the policy acts on."""
-    found = [key for key in ACTING_KEYS if key in observation_space.spaces]
-    if len(found) != 1 or STATE_KEY not in observation_space.spaces:
-        raise InvalidArgumentError(f"an asymmetric actor-critic needs a Dict of {STATE_KEY!r} and one of "
-                                   f"{ACTING_KEYS}, not {observation_space}")
-    return found[0]
 
 
 class KeyFeatures(BaseFeaturesExtractor):

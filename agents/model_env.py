@@ -18,7 +18,7 @@ from gymnasium import spaces
 
 import netgym
 from netgym.errors import InvalidArgumentError
-from netgym.wrappers import ACTING_KEYS
+from netgym.wrappers import acting_key
 
 DEFAULT_ENV = "NetCatch-v0"
 SAVED_AS = "netgym_env"
@@ -84,9 +84,7 @@ def acting_space(model_space: spaces.Space) -> spaces.Space:
     """What of a model's observations its policy acts on: the acting key of an asymmetric
     actor-critic's Dict (``"pixels"`` or ``"observation"``, :mod:`agents.asymmetric`; its critics
     alone read the ``"state"``), else the whole."""
-    if not isinstance(model_space, spaces.Dict):
-        return model_space
-    return next(model_space[key] for key in ACTING_KEYS if key in model_space.spaces)
+    return model_space[acting_key(model_space)] if isinstance(model_space, spaces.Dict) else model_space
 
 
 def frames_fitting(model_space: spaces.Space, env_space: spaces.Space) -> int | None:

@@ -20,6 +20,15 @@ ACTING_KEYS = ("pixels", "observation")
 """The keys of what a policy acts on in those Dicts: an image, or the env's own observation."""
 
 
+def acting_key(observation_space: gym.spaces.Dict) -> str:
+    """The key of the part of such a Dict observation that the policy acts on."""
+    found = [key for key in ACTING_KEYS if key in observation_space.spaces]
+    if len(found) != 1 or STATE_KEY not in observation_space.spaces:
+        raise InvalidArgumentError(f"an asymmetric actor-critic needs a Dict of {STATE_KEY!r} and one of "
+                                   f"{ACTING_KEYS}, not {observation_space}")
+    return found[0]
+
+
 class RecordEpisodeVideo(gym.Wrapper):
     """Write a video of every episode ``episode_trigger(episode_index)`` selects (default: all),
     with every frame of every throw: NetCatch's ``rgb_array_list`` frames, ``1 / render_fps``

@@ -17,11 +17,10 @@ import dataclasses
 from pathlib import Path
 
 from agents.baselines.grid import FINAL_SEED
-from agents.baselines.runner import MODELS, saved_models
-from agents.evaluation import evaluate
-from agents.policies import policy_in_env
+from agents.baselines.runner import evaluate_saved
 from agents.windy_throws import table
 from netgym.bench.results import write_results
+from netgym.errors import InvalidArgumentError
 
 
 def main() -> None:
@@ -33,14 +32,12 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=1000, help="held-out episodes of every model")
     parser.add_argument("--results", type=Path, required=True, help="the result file (JSON)")
     args = parser.parse_args()
-    models = saved_models(args.out, args.algorithm, args.env_id)
-    if not models:
-        raise SystemExit(f"no saved models under {args.out / MODELS / args.algorithm / args.env_id}")
-    rows = []
-    for path in models:
-        env_id, policy = policy_in_env(path, args.env_id)
-        rate = evaluate(policy, args.episodes, seed=FINAL_SEED, progress=path.stem, env_id=env_id)
-        rows.append({"policy": f"{args.algorithm} {path.stem.replace('_', ' ')}", **dataclasses.asdict(rate)})
+    try:
+        rates = evaluate_saved(args.out, args.algorithm, args.env_id, args.episodes, FINAL_SEED)
+    except InvalidArgumentError as error:
+        parser.error(str(error))
+    rows = [{"policy": f"{args.algorithm} {path.stem.replace('_', ' ')}", **dataclasses.asdict(rate)}
+            for path, rate in rates.items()]
     figures = {"env_id": args.env_id, "algorithm": args.algorithm, "folder": str(args.out),
                "episodes": args.episodes, "seed": FINAL_SEED, "rows": rows}
     print(table(figures))

@@ -15,9 +15,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from agents.baselines.runner import MODELS, saved_models
-from agents.evaluation import evaluate
-from agents.policies import PRETRAINED, for_acting, load_policy, policy_in_env
+from agents.baselines.runner import evaluate_saved
+from agents.policies import PRETRAINED, for_acting, load_policy
+from netgym.errors import InvalidArgumentError
 
 SELECTION_SEED = 50_000
 
@@ -31,15 +31,13 @@ def main() -> None:
     parser.add_argument("--out", type=Path, default=Path("docs/results/baselines"), help="the baselines' folder")
     parser.add_argument("--episodes", type=int, default=400, help="fresh episodes each saved model is evaluated on")
     args = parser.parse_args()
-    models = saved_models(args.out, args.algorithm, args.env_id)
-    if not models:
-        raise SystemExit(f"no saved models under {args.out / MODELS / args.algorithm / args.env_id}")
-    rates = {}
-    for path in models:
-        rates[path] = evaluate(policy_in_env(path, args.env_id)[1], args.episodes, seed=SELECTION_SEED,
-                               progress=path.stem, env_id=args.env_id)
-        print(f"{path.stem}: {rates[path]}")
-    best = max(models, key=lambda path: rates[path].rate)   # the lowest seed of a tie
+    try:
+        rates = evaluate_saved(args.out, args.algorithm, args.env_id, args.episodes, SELECTION_SEED)
+    except InvalidArgumentError as error:
+        parser.error(str(error))
+    for path, rate in rates.items():
+        print(f"{path.stem}: {rate}")
+    best = max(rates, key=lambda path: rates[path].rate)   # the lowest seed of a tie
     model = load_policy(best)
     for_acting(model)
     target = PRETRAINED.parent / args.name

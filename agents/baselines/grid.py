@@ -90,7 +90,7 @@ class Run:
 
     def command(self, out: Path) -> list[str]:
         """The arguments of ``python`` that run this run alone (if its result file is missing)."""
-        longer = self.budget not in (0, QUICK_BUDGET if self.quick else BUDGETS[self.env_id])
+        longer = self.budget not in (0, table_budget(self.env_id, self.quick))
         return ["scripts/baselines.py", "--out", str(out), "--algos", self.algorithm, "--ids", self.env_id,
                 "--seeds", str(self.seed), *(["--quick"] if self.quick else []),
                 *(["--budget", str(self.budget)] if longer else [])]
@@ -99,6 +99,12 @@ class Run:
     def cost(self) -> int:
         """Throws the run simulates, training and final evaluation (for progress estimates)."""
         return self.budget + self.final_episodes * netgym.balls_per_episode(self.env_id)
+
+
+def table_budget(env_id: str, quick: bool = False) -> int:
+    """The learners' steps on ``env_id`` under the table's protocol (its :data:`BUDGETS`, or
+    :data:`QUICK_BUDGET` in quick mode)."""
+    return QUICK_BUDGET if quick else BUDGETS[env_id]
 
 
 def grid(algorithms: list[str] | None = None, ids: list[str] | None = None, seeds: list[int] | None = None,
@@ -121,6 +127,6 @@ def grid(algorithms: list[str] | None = None, ids: list[str] | None = None, seed
     runs = [Run(reference, env_id, 0, 0, **episodes) for env_id in ids for reference in REFERENCES]
     for algorithm in algorithms:
         for env_id in (i for i in ids if i in env_ids(yml(algorithm))):
-            steps = budget or (QUICK_BUDGET if quick else BUDGETS[env_id])
+            steps = budget or table_budget(env_id, quick)
             runs += [Run(algorithm, env_id, seed, steps, **episodes) for seed in seeds]
     return runs

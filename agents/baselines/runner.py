@@ -17,6 +17,8 @@ from typing import Any
 
 from agents.baselines.grid import Run
 from agents.baselines.runs import execute
+from agents.evaluation import CaptureRate, evaluate
+from agents.policies import policy_in_env
 from agents.warm_up import compile_kernels
 from netgym.bench.results import read_results, write_results
 from netgym.errors import InvalidArgumentError
@@ -25,10 +27,16 @@ PR_SET_PDEATHSIG = 1
 MODELS = "models"
 
 
-def saved_models(out: Path, algorithm: str, env_id: str) -> list[Path]:
-    """The models the runs of ``algorithm`` on ``env_id`` saved under ``out``, by seed."""
-    return sorted((out / MODELS / algorithm / env_id).glob("seed_*.zip"),
-                  key=lambda path: int(path.stem.removeprefix("seed_")))
+def evaluate_saved(out: Path, algorithm: str, env_id: str, episodes: int, seed: int) -> dict[Path, CaptureRate]:
+    """Each model the runs of ``algorithm`` on ``env_id`` saved under ``out`` (by seed), evaluated
+    deterministically on ``episodes`` episodes of ``env_id`` seeded from ``seed``, as it acts (its
+    frame stack too); InvalidArgumentError when there is none."""
+    models = sorted((out / MODELS / algorithm / env_id).glob("seed_*.zip"),
+                    key=lambda path: int(path.stem.removeprefix("seed_")))
+    if not models:
+        raise InvalidArgumentError(f"no saved models under {out / MODELS / algorithm / env_id}")
+    return {path: evaluate(policy_in_env(path, env_id)[1], episodes, seed=seed, progress=path.stem, env_id=env_id)
+            for path in models}
 """The folder under the output folder where each learner's final model is saved
 (``models/ALGORITHM/ENV_ID/seed_K.zip``; not committed with the result files)."""
 

@@ -16,13 +16,13 @@ from gymnasium.utils.env_checker import check_env
 from stable_baselines3.common.callbacks import BaseCallback
 
 import netgym  # noqa: F401
-from agents.asymmetric import AsymmetricSAC, AsymmetricSACPolicy, acting_key, acting_kwargs
+from agents.asymmetric import AsymmetricSAC, AsymmetricSACPolicy, acting_kwargs
 from agents.evaluation import evaluate
 from agents.model_env import record_env
 from agents.policies import load_policy, policy_in_env, saved_algorithm
 from netgym.bench.results import read_results
 from netgym.errors import InvalidArgumentError
-from netgym.wrappers import HiddenState, thrower_view_env
+from netgym.wrappers import HiddenState, acting_key, thrower_view_env
 
 TRAINING_ENVS = {"pixels": lambda: gym.make("NetCatchPixels-v0", with_state=True),
                  "observation": lambda: HiddenState(gym.make("NetCatchWindy-v0"))}

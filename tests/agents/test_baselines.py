@@ -134,6 +134,13 @@ def test_a_budget_replaces_the_ids_and_a_runs_command_repeats_it() -> None:
             grid(["sac"], budget=wrong)
 
 
+def test_evaluating_a_cells_saved_models_names_the_folder_that_has_none(tmp_path: Path) -> None:
+    from agents.baselines.runner import evaluate_saved
+
+    with pytest.raises(InvalidArgumentError, match="no saved models under .*models/sac/NetCatch-v0"):
+        evaluate_saved(tmp_path, "sac", "NetCatch-v0", 1, 0)
+
+
 def test_an_env_wrapper_setting_names_a_training_wrapper() -> None:
     from agents.hyperparams import env_wrapper
     from netgym.wrappers import HiddenState
