@@ -36,3 +36,16 @@ class NetNotAtRestError(NetgymError, RuntimeError):
 
 class EpisodeEndedError(NetgymError, RuntimeError):
     """``step`` was called on an episode that has ended (or before the first ``reset``)."""
+
+
+class NoProgressError(NetgymError, RuntimeError):
+    """A simulation plan (a throw, the pause between throws, the settling of a new net) broke its
+    progress guarantee: more pieces in a row than allowed left the simulated time where it was,
+    or it took more pieces than its bound. The message names the plan (a throw's launch) and
+    the state it stalled in. A bug in netgym, never a property of the input: please report it."""
+
+
+class StepTimeoutError(NetgymError, RuntimeError):
+    """A watched run (an environment step: a throw and the pause after it) exceeded its watchdog's
+    bound of requests or of wall seconds (numba's compiling not counted). The message says what
+    was thrown, so that a training run stops with it instead of hanging a worker."""

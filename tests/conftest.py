@@ -17,6 +17,7 @@ from netgym.physics.simulator import Simulator
 
 settings.register_profile("ci", max_examples=25, deadline=None, derandomize=True)
 settings.register_profile("thorough", max_examples=300, deadline=None)
+settings.register_profile("domain", deadline=None)  # tests/physics/test_throw_domain.py's long run
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 WARM_UP_ENVIRONMENTS = ("NetCatch-v0", "NetCatchGoal-v0")

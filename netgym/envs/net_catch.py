@@ -24,6 +24,7 @@ from netgym.physics.film import Film, FrameClock
 from netgym.physics.model.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
 from netgym.physics.pause import Pause, pause
+from netgym.physics.watchdog import Watchdog
 from netgym.physics.throw import FreeFlight, ThrowResult, throw
 from netgym.view.replay import Scenery, Snapshot
 
@@ -304,10 +305,12 @@ class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
             launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
         self._flight = velocity
-        result = throw(self.sim, launch, velocity, fast=self.fast, film=self._film)
+        watchdog = Watchdog(f"{self.spec.id if self.spec else type(self).__name__} step {self._throws_done + 1} (the "
+                            f"throw from {launch.tolist()} m at {velocity.tolist()} m/s, then the pause)")
+        result = throw(self.sim, launch, velocity, fast=self.fast, film=self._film, observer=watchdog)
         settled = Pause()
         if self._throws_done + 1 < self.balls_per_episode:  # the net settles for the next throw (none after the last)
-            settled = pause(self.sim, self._film)
+            settled = pause(self.sim, self._film, watchdog)
         return self.after_throw(launch, velocity, result, aimed, settled)
 
     def _intended_launch(self, action: np.ndarray) -> tuple[float, float, float]:

@@ -95,8 +95,18 @@ def _kernel_name(ev: event.Event, package: str) -> str | None:
     return f"{module.removeprefix(package + '.')}.{function.__name__}"
 
 
+_ANNOUNCED: list[CompileNotice] = []  # the notice announce_compilation registered, once
+
+
 def announce_compilation() -> CompileNotice:
-    """Register a :class:`CompileNotice` for numba's compile events; returns it."""
-    notice = CompileNotice()
-    event.register("numba:compile", notice)
-    return notice
+    """Register a :class:`CompileNotice` for numba's compile events (once); returns it."""
+    if not _ANNOUNCED:
+        _ANNOUNCED.append(CompileNotice())
+        event.register("numba:compile", _ANNOUNCED[0])
+    return _ANNOUNCED[0]
+
+
+def compile_seconds() -> float:
+    """Wall seconds this process has spent compiling netgym's kernels, up to the last
+    compilation that ended (what a watchdog leaves out of the time it measures)."""
+    return announce_compilation().spent

@@ -7,6 +7,7 @@ book its cost as a :class:`Pause`.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -48,6 +49,7 @@ def pause_plan(sim: "Simulator", film: Film | None = None) -> Plan:
     return Pause(sim.substeps - substeps, sim.state.time - time)
 
 
-def pause(sim: "Simulator", film: Film | None = None) -> Pause:
-    """Run the pause on ``sim`` (see :func:`pause_plan`), filmed by ``film`` if given."""
-    return sim.run(pause_plan(sim, film), film)
+def pause(sim: "Simulator", film: Film | None = None, observer: Callable[["Simulator"], None] | None = None) -> Pause:
+    """Run the pause on ``sim`` (see :func:`pause_plan`), filmed by ``film`` if given;
+    ``observer(sim)`` is called after every request (e.g. a :class:`~netgym.physics.watchdog.Watchdog`)."""
+    return sim.run(pause_plan(sim, film), film, observer)

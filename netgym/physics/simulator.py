@@ -29,11 +29,12 @@ from netgym.physics.outcomes import CaptureRule, capture_rule
 from netgym.physics.film import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
 from netgym.physics.progress import Progress
+from netgym.physics.progress_guard import ProgressGuard
 from netgym.physics.recent import Recent
 from netgym.physics.model.stability import NetModes, net_modes_of, stable_dt
 from netgym.physics.kernels.stepping import new_counters
 
-RELAX_IMPLICIT_DT = 0.01      # s, implicit Euler step of the fallback relaxation
+RELAX_IMPLICIT_DT = 0.01      # s, step of the fallback relaxation (implicit Euler; IMEX with compliant contacts)
 SETTLE_STABILITY_SHARE = 0.9  # the pause steps at most this share of its integrator's linear stability limit
 RELAX_REQUEST = 0.25          # s, the most simulated time one relaxation request covers (a moment to observe)
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing faster than simulation.settle_speed
@@ -303,12 +304,16 @@ class Simulator:
 
     def _relaxation(self, max_time: float, integrator: int, dt: float, settle_speed: float | None, damped: bool,
                     window: float, film: Film | None, inertia: float = 1.0) -> Plan:
-        """Dynamic relaxation with one integrator, dt and inertia of the net (see :meth:`relax_plan`)."""
+        """Dynamic relaxation with one integrator, dt and inertia of the net (see :meth:`relax_plan`);
+        a request that took no step raises :class:`~netgym.errors.NoProgressError` rather than spin."""
         frames = film.clock if film is not None and film.settling else None
         speed = self.config.simulation.settle_speed if settle_speed is None else settle_speed
         rest = RestTest(self.state.x.shape, round(window / dt), speed * window, damped, inertia)
         started, taken = self.state.time, 0
         total, most = math.ceil(max_time / dt - 1e-9), max(1, round(RELAX_REQUEST / dt))
+        guard = ProgressGuard(started, started + total * dt, dt, lambda: (
+            f"the relaxation of the {self.config.name} scene with {self.n_balls} balls "
+            f"({Integrator(integrator).label}, dt {dt:g} s) at {self.state.time!r} s, {taken} of {total} steps taken"))
         while taken < total:
             n = min(total - taken, most)
             if frames is not None:
@@ -316,6 +321,7 @@ class Simulator:
             yield Relax(n, integrator, dt, rest)
             taken += rest.steps
             self.state.time = started + taken * dt  # the same time however the requests were cut
+            guard.piece(self.state.time)
             if rest.at_rest:
                 self.sleep()
                 return
@@ -364,22 +370,27 @@ def prepare_net(config: SceneConfig, model: Model | None = None) -> PreparedNet:
 
 
 def _settled(sim: Simulator) -> np.ndarray:
-    """The positions ``sim``'s net, from its built shape, comes to rest at."""
+    """The positions ``sim``'s net, from its built shape, comes to rest at: kinetically damped near
+    the equilibrium, then on the scene's own dynamics until it stays. Where those dynamics cannot
+    hold the net still (an unstable dt, allowed with check_stability=False), the damped
+    equilibrium; where the damped relaxation diverges, the equilibrium found with implicit Euler
+    (IMEX Euler for compliant contacts, which have no implicit Euler step) from the built shape."""
     progress = Progress(f"settling the net of {sim.model.n_net} particles", SETTLE_TIME)
     speed = min(NEW_NET_SETTLE_SPEED, sim.config.simulation.settle_speed)
-    try:  # kinetically damped near the equilibrium, then on the scene's own dynamics until it stays
+    try:
         sim.run(sim.relax_plan(SETTLE_TIME, settle_speed=speed), observer=progress)
+        damped = sim.checkpoint()
         try:
             sim.run(sim.relax_plan(SETTLE_TIME, sim.integrator, sim.dt, settle_speed=NEW_NET_REST_SPEED,
                                    damped=False, window=NEW_NET_WINDOW), observer=progress)
         except NetNotAtRestError:
             sim.sleep()  # a heavily overdamped net creeps on for minutes: as settled as SETTLE_TIME gets it
+        except SimulationDivergedError:
+            sim.restore(damped)
     except SimulationDivergedError:
-        # an unstable dt (allowed with check_stability=False) cannot hold the net still:
-        # start it from the equilibrium found with implicit Euler instead
         sim.state = State.at_rest(sim.model)
-        sim.run(sim.relax_plan(SETTLE_TIME, Integrator.IMPLICIT_EULER, RELAX_IMPLICIT_DT, settle_speed=speed),
-                observer=progress)
+        fallback = Integrator.IMEX_EULER if sim.contact_model == ContactModel.COMPLIANT else Integrator.IMPLICIT_EULER
+        sim.run(sim.relax_plan(SETTLE_TIME, fallback, RELAX_IMPLICIT_DT, settle_speed=speed), observer=progress)
     finally:
         progress.close()
     return sim.state.x.copy()

@@ -44,10 +44,12 @@ def after_flight(throw: ThrowContext) -> Reason | None:
 
 class Verdict(NamedTuple):
     """What :func:`after_piece` finds: the ``reason`` the throw is decided, or None; and
-    whether, undecided, the scene may go to sleep (``quiet``: nothing but the ball moves any
-    more and it could fly clear for a step, or move alone for one, near nothing that moves; or
-    the rest moves slowly and the ball is far from it,
-    :func:`~netgym.physics.kernels.watch.far_from_a_slow_scene`)."""
+    whether, undecided, the scene may go to sleep (``quiet``: the ball could fly clear for a
+    step, or move alone for one, near nothing that moves, and nothing but the ball moves any
+    more, or the rest moves slowly and the ball is far from it,
+    :func:`~netgym.physics.kernels.watch.far_from_a_slow_scene`). A ball that can do neither is
+    integrated with the rest, however far and slow that is: asleep, the scene would be woken
+    again at once, with no time gone by."""
 
     reason: Reason | None
     quiet: bool = False
@@ -71,8 +73,8 @@ def after_piece(throw: ThrowContext) -> Verdict:
     others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km, watch)
     reason = after_check(throw, at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
     m = throw.sim.model
-    return Verdict(reason, reason is None and (
-        (others < watch.sleep_speed and (flight_time(throw) > 0.0 or can_roll_alone(throw)))
+    return Verdict(reason, reason is None and (flight_time(throw) > 0.0 or can_roll_alone(throw)) and (
+        others < watch.sleep_speed
         or far_from_a_slow_scene(s.x, m.n_net, m.ball_radius, m.segments, m.poles, watch, others)))
 
 

@@ -27,6 +27,7 @@ from netgym.physics.film import Film
 from netgym.physics.outcomes import Reason
 from netgym.physics.pause import pause_plan
 from netgym.physics.plans import CHUNK_SECONDS, Integrate, Plan, Tick, Watched
+from netgym.physics.progress_guard import ProgressGuard
 from netgym.physics.throw import decisions
 from netgym.physics.throw.clear_flight import fly_clear
 from netgym.physics.throw.clearance import can_roll_alone, clearance
@@ -141,11 +142,18 @@ class Throw:
         rim), the scene sleeps again. The ball alone flies again only once it is clear of
         everything, where the compiled loop of its chunks hands back
         (:func:`~netgym.physics.kernels.watch.roll_watched`).
+
+        Every piece is booked with a :class:`~netgym.physics.progress_guard.ProgressGuard`: a
+        loop that stopped moving simulated time on raises
+        :class:`~netgym.errors.NoProgressError`, naming the launch and the state, instead of
+        spinning.
         """
         throw = self.context
         sim = throw.sim
+        guard = ProgressGuard(throw.course.launched, throw.course.deadline, sim.dt, self._where)
         alone = False  # the ball is near only what cannot move, the scene asleep: step it alone next
         while True:
+            guard.piece(sim.state.time)
             rolled = near_fixed = False
             if throw.fast and not sim.awake:
                 if alone:
@@ -168,6 +176,16 @@ class Throw:
             if verdict.quiet:
                 sim.sleep(keep=throw.ball.row)
             alone = near_fixed or (rolled and clearance(throw) <= TUNING.clearance and can_roll_alone(throw))
+
+    def _where(self) -> str:
+        """The throw and where it stands, for an error."""
+        sim, row = self.context.sim, self.context.ball.row
+        s = sim.state
+        return (f"the throw from {self.position.tolist()} m at {self.velocity.tolist()} m/s into the "
+                f"{sim.config.name} scene ({sim.integrator.label}, dt {sim.dt:g} s, {sim.contact_model.label} "
+                f"contacts, {'fast path' if self.context.fast else 'full simulation'}), now at {s.time!r} s with "
+                f"the ball at {s.x[row].tolist()} m moving {s.v[row].tolist()} m/s, the scene "
+                f"{'awake' if sim.awake else 'asleep'}")
 
     def _integrate_near(self) -> Plan:
         """Integrate everything for one chunk of CHUNK_SECONDS (less before the time limit; none
