@@ -37,6 +37,19 @@ in ``baselines/``, runs beyond its budget in ``baselines_long/``). NetCatch-v0's
 :data:`PRETRAINED`."""
 
 
+SHIPPED_FOR_ID = {"NetCatch-v0": "ppo_netcatch.zip", "NetCatchGoal-v0": "sac_goal.zip",
+                  "NetCatchLongEpisode-v0": "ppo_longepisode.zip", "NetCatchWindy-v0": "sac_asym_windy.zip",
+                  "NetCatchNoisy-v0": "sac_noisy.zip", "NetCatchRandomized-v0": "ppo_netcatch.zip",
+                  "NetCatchRandomized-v1": "rppo_randomized_v1.zip", "NetCatchPixels-v0": "sac_asym_pixels.zip"}
+"""The model shipped in ``agents/pretrained/`` for each id, the one its card names (for
+NetCatchRandomized-v0, trained on no draws of its own, NetCatch-v0's)."""
+
+
+def shipped_model(env_id: str) -> Path:
+    """The path of the model shipped for ``env_id`` (:data:`SHIPPED_FOR_ID`)."""
+    return PRETRAINED.parent / SHIPPED_FOR_ID[env_id]
+
+
 CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")
 """The algorithms a saved model may come from that sb3-contrib implements."""
 AGENTS_ALGORITHMS = ("AsymmetricSAC",)
