@@ -376,17 +376,22 @@ def _ball_poles_and_net(bodies, b, model, net_box, near, extent, moved):
 @kernel
 def resolve_ground(bodies, model):
     """Resolve every body's contact with the ground once, after :func:`resolve_ball_contacts` (a net
-    without balls needs only this pass, so that its relaxation compiles without the balls')."""
-    for k in range(bodies.x.shape[0]):
-        resolve_body_ground(bodies, k, model)
+    without balls needs only this pass, so that its relaxation compiles without the balls'): a net
+    particle's point, then each ball's sphere. The records are unpacked once, outside the loops:
+    read per particle, they cost the net's step half its speed."""
+    x, inv_mass, threshold = bodies.x, bodies.inv_mass, model.restitution_threshold
+    n_net, materials = model.n_net, model.materials
+    net_ground = materials.net_ground
+    for k in range(n_net):
+        if x[k, 2] < 0.0 and inv_mass[k] > 0.0:
+            _static_response(bodies, k, Touch(0.0, 0.0, 1.0, 0.0 - x[k, 2]), net_ground, threshold, False)
+    for k in range(n_net, x.shape[0]):
+        resolve_ball_ground(bodies, k, model.ball_radius, materials.ball_ground, threshold)
 
 
 @inline_kernel
-def resolve_body_ground(bodies, k, model):
-    """Resolve body ``k``'s contact with the ground (a ball's sphere, a net particle's point)."""
-    x, inv_mass = bodies.x, bodies.inv_mass
-    n_net, radius, materials, threshold = model.n_net, model.ball_radius, model.materials, model.restitution_threshold
-    floor = radius if k >= n_net else 0.0
-    if x[k, 2] < floor and inv_mass[k] > 0.0:
-        material = materials.ball_ground if k >= n_net else materials.net_ground
-        _static_response(bodies, k, Touch(0.0, 0.0, 1.0, floor - x[k, 2]), material, threshold, k >= n_net)
+def resolve_ball_ground(bodies, k, radius, material, threshold):
+    """Resolve the contact of the ball in row ``k`` (of ``radius``) with the ground, of
+    ``material`` and restitution ``threshold``."""
+    if bodies.x[k, 2] < radius and bodies.inv_mass[k] > 0.0:
+        _static_response(bodies, k, Touch(0.0, 0.0, 1.0, radius - bodies.x[k, 2]), material, threshold, True)

@@ -14,7 +14,7 @@ from netgym.physics.compliant.system import new_work
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 from netgym.physics.kernels.air import rk4_step
-from netgym.physics.kernels.contacts import (Bodies, resolve_ball_contacts, resolve_body_ground, resolve_ground,
+from netgym.physics.kernels.contacts import (Bodies, resolve_ball_contacts, resolve_ball_ground, resolve_ground,
                                              resolve_lone_ball)
 from netgym.physics.kernels.forces import kinetic_energy
 from netgym.physics.kernels.integrators import START_SLOT, smooth_step
@@ -278,7 +278,7 @@ def advance_alone(x, v, inv_mass, entered, model, settings, n_steps, row, stats)
             copy_row(before_v, b, v, row)
             _fly_ball(x, v, row, before, before_v, b, model.gravity, h, model.ball_drag, model.wind)
             resolve_lone_ball(bodies, row, model, box, near)
-            resolve_body_ground(bodies, row, model)
+            resolve_ball_ground(bodies, row, radius, model.materials.ball_ground, model.restitution_threshold)
             update_entered(x, before, n_net, entered, model.opening)
             stats[0].substeps += 1
     return (OK, n_steps) if _finite_and_below(ball, settings.divergence_speed) else (DIVERGED, 0)
