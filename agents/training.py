@@ -115,6 +115,10 @@ class CaptureCurve(BaseCallback):
         self._resumed = time.perf_counter()
         self._evaluate()
 
+    def latest_rate(self) -> float | None:
+        """The capture rate of the latest evaluation, None before the first."""
+        return self.points[-1][1] if self.points else None
+
     def training_seconds(self) -> float:
         """Wall seconds of training so far, evaluations excluded (what the budget counts)."""
         return self._spent + time.perf_counter() - self._resumed
@@ -185,7 +189,7 @@ def train(out: Path, minutes: float = 20.0, timesteps: int = 200_000, n_envs: in
                          frame_stack=frame_stack)
     model = PPO(POLICY, env, seed=seed, tensorboard_log=str(out / "tb"), verbose=0, **PPO_PARAMS)
     record_env(model, env_id, frame_stack)
-    callbacks = [curve, RunProgress(curve.budget_s, curve.training_seconds)] if progress_bar else [curve]
+    callbacks = [curve, RunProgress(curve.budget_s, curve.training_seconds, latest_rate=curve.latest_rate)] if progress_bar else [curve]
     with torch_threads(TRAINER_THREADS):
         model.learn(timesteps, callback=CallbackList(callbacks))
     model.save(out / "model")

@@ -27,6 +27,7 @@ import numpy as np
 
 from netgym.envs import NetCatchEnv
 from netgym.launch import action_to_launch
+from netgym.view.render import display_problem
 
 STEP = 0.05   # change of an action component per key press (the action spans [-1, 1])
 
@@ -88,21 +89,6 @@ class Play:
                 self.handle(event)
             clock.tick(self.env.metadata["render_fps"])
         self.env.close()
-
-
-def display_problem() -> str | None:
-    """Why no window can open here, or None: on Linux no display named in the environment, or
-    else SDL's video failing to start."""
-    named = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
-    if sys.platform.startswith("linux") and not any(os.environ.get(name) for name in named):
-        return "neither DISPLAY nor WAYLAND_DISPLAY is set"
-    import pygame
-
-    try:
-        pygame.display.init()
-    except pygame.error as error:
-        return f"SDL's video did not start ({error})"
-    return None
 
 
 def main() -> None:

@@ -13,6 +13,8 @@ pygame window (optional extra ``render``; headless with ``SDL_VIDEODRIVER=dummy`
 from __future__ import annotations
 
 import math
+import os
+import sys
 
 import numpy as np
 
@@ -238,6 +240,12 @@ class Renderer:
         import pygame
 
         if self._window is None:
+            problem = display_problem()
+            if problem is not None:
+                raise InvalidArgumentError(
+                    f'render_mode="human" needs a display for its window: {problem}. Use render_mode="rgb_array" '
+                    f'(frames as arrays) or "rgb_array_list" with netgym.wrappers.RecordEpisodeVideo, or set '
+                    f'SDL_VIDEODRIVER=dummy to draw without a window')
             pygame.display.init()  # the window only: no audio, whose drivers warn where there is no sound card
             pygame.display.set_caption("NetCatch-v0")
             self._window = pygame.display.set_mode((frame.shape[1], frame.shape[0]))
@@ -255,3 +263,18 @@ class Renderer:
             pygame.display.quit()
             pygame.quit()
             self._window = None
+
+
+def display_problem() -> str | None:
+    """Why no window can open here, or None: on Linux no display named in the environment, or
+    else SDL's video failing to start."""
+    named = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")
+    if sys.platform.startswith("linux") and not any(os.environ.get(name) for name in named):
+        return "neither DISPLAY nor WAYLAND_DISPLAY is set"
+    import pygame
+
+    try:
+        pygame.display.init()
+    except pygame.error as error:
+        return f"SDL's video did not start ({error})"
+    return None

@@ -201,23 +201,32 @@ def test_a_model_saved_without_its_env_is_matched_by_its_observations(size: int,
         model_env(SimpleNamespace(observation_space=spaces.Box(-1.0, 1.0, (13,), np.float32)))
 
 
-def test_training_progress_ends_where_the_budget_or_the_step_cap_ends_the_run() -> None:
-    """The bar's total (and so its ETA) is the steps the run will have made when it ends:
-    a 2-minute budget at 100 steps/s ends a 200,000-step run at 12,000 steps."""
+def test_training_progress_estimates_its_end_once_and_shows_the_latest_evaluation() -> None:
+    """The bar's total (and so its ETA) is the steps the run will have made when it ends,
+    estimated once after the warm-up and then kept: a 2-minute budget at 100 steps/s ends a
+    200,000-step run at 12,000 steps; a run that overtakes the estimate is estimated again. The
+    latest evaluation's capture rate shows as soon as it is measured."""
     import io
     from types import SimpleNamespace
 
-    from agents.run_progress import RunProgress
+    from agents.run_progress import WARM_UP_S, RunProgress
 
-    clock, stream = [0.0], io.StringIO()
-    progress = RunProgress(budget_s=120.0, training_seconds=lambda: clock[0], stream=stream)
+    clock, stream, rate = [0.0], io.StringIO(), [None]
+    progress = RunProgress(budget_s=120.0, training_seconds=lambda: clock[0], stream=stream,
+                           latest_rate=lambda: rate[0])
     progress.model = SimpleNamespace(num_timesteps=0)
     progress.on_training_start({"total_timesteps": 200_000}, {})
-    assert progress.bar.total == 200_000  # no rate measured yet
-    progress.model.num_timesteps, clock[0] = 3_000, 30.0
+    progress.model.num_timesteps, clock[0] = 500, WARM_UP_S / 2  # warming up: nothing estimated yet
+    progress.on_step()
+    assert progress.bar.total == 200_000 and "caught" not in stream.getvalue()
+    progress.model.num_timesteps, clock[0], rate[0] = 3_000, 30.0, 0.25
     progress.on_step()
     assert progress.bar.total == 12_000 and progress.bar.n == 3_000
-    progress.model.num_timesteps, clock[0] = 150_000, 60.0  # fast enough to reach the cap first
+    progress.model.num_timesteps, clock[0], rate[0] = 4_000, 45.0, 0.5  # slower now: the estimate stays
+    progress.on_step()
+    progress.bar.refresh()
+    assert progress.bar.total == 12_000 and "last evaluation: 50.0% caught" in stream.getvalue()
+    progress.model.num_timesteps, clock[0] = 150_000, 60.0  # past the estimate: estimated again
     progress.on_step()
     assert progress.bar.total == 200_000
     progress.on_training_end()

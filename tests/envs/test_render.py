@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 
 import gymnasium as gym
 import numpy as np
@@ -12,6 +13,7 @@ import pytest
 import netgym  # noqa: F401
 from agents.oracle import BallisticOracle
 from netgym.config import load_scene
+from netgym.errors import InvalidArgumentError
 from netgym.envs import NetCatchEnv
 from netgym.physics.film import Film, FrameClock
 from netgym.physics.simulator import Simulator
@@ -208,4 +210,18 @@ def test_recorded_episode_video_holds_every_throw_at_render_fps(tmp_path) -> Non
     assert reader.get_meta_data()["fps"] == fps
     assert len(frames) >= 1 + sum(math.floor(t * fps) + 1 for t in simulated)
     assert frames[0].shape == (360, 480, 3)
+    env.close()
+
+
+def test_human_mode_without_a_display_says_so_at_the_first_render(monkeypatch: pytest.MonkeyPatch) -> None:
+    """No display named (and no SDL driver chosen): the first render (human mode renders from
+    reset on) names what is missing and what to use instead, rather than drawing into SDL's
+    silent off-screen fallback."""
+    pytest.importorskip("pygame")
+    for name in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER"):
+        monkeypatch.delenv(name, raising=False)
+    monkeypatch.setattr(sys, "platform", "linux")
+    env = gym.make("NetCatch-v0", render_mode="human")
+    with pytest.raises(InvalidArgumentError, match=r'render_mode="human" needs a display.*DISPLAY.*"rgb_array"'):
+        env.reset(seed=0)  # human mode renders from reset on
     env.close()
