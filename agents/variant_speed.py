@@ -1,5 +1,6 @@
 """Every registered id's speed as a user pays it: whole episodes, resets included, under the
-ballistic oracle and random actions, and PPO training's environment steps per second.
+ballistic oracle, random actions and the model shipped for the id (the models users train:
+:data:`~agents.policies.SHIPPED_FOR_ID`), and PPO training's environment steps per second.
 
 One process, one numba thread. The ids run interleaved, round after round, each round on
 episode seeds of its own, so that a slow spell of a shared machine falls on all of them alike;
@@ -17,6 +18,7 @@ import pstats
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import gymnasium as gym
 import numba
@@ -26,10 +28,12 @@ from tqdm import tqdm
 
 import netgym
 from agents.oracle import BallisticOracle
+from agents.policies import policy_in_env, shipped_model
 from netgym.bench.speed.speed_table import BASE_ID
 from netgym.config import SceneConfig
 
-POLICIES = ("oracle", "random")
+SHIPPED = "shipped model"
+POLICIES = ("oracle", "random", SHIPPED)
 VECTOR_IDS = tuple(env_id for env_id in netgym.ENVIRONMENTS if env_id != "NetCatchPixels-v0")
 """The ids with a vector observation (the pixel id renders every step: a different workload)."""
 
@@ -68,15 +72,27 @@ class SpeedRow:
     capture_rate: float
     ratio: float
     left_out: int = 0
+    model: str = ""  # the shipped model's file, for that policy
 
 
-def _chooser(policy: str, scene: SceneConfig, seed: int) -> Callable[[np.ndarray], np.ndarray]:
-    """The action for an observation: the ballistic oracle of ``scene``, or random actions."""
+def _chooser(policy: str, model: Any, scene: SceneConfig, seed: int) -> Callable[[np.ndarray, bool], np.ndarray]:
+    """The action for an observation (the second argument: the first of its episode): the
+    ballistic oracle of ``scene``, random actions, or the shipped ``model`` (its recurrent state
+    or frame stack given back, as SB3's ``evaluate_policy`` does)."""
     if policy == "oracle":
         oracle = BallisticOracle(scene)
-        return lambda obs: oracle.predict(obs)[0]
-    rng = np.random.default_rng(seed)
-    return lambda obs: rng.uniform(-1.0, 1.0, 3).astype(np.float32)
+        return lambda obs, first: oracle.predict(obs)[0]
+    if policy == "random":
+        rng = np.random.default_rng(seed)
+        return lambda obs, first: rng.uniform(-1.0, 1.0, 3).astype(np.float32)
+    state: list[Any] = [None]
+
+    def act(obs: np.ndarray, first: bool) -> np.ndarray:
+        action, state[0] = model.predict(obs, state=None if first else state[0], episode_start=np.array([first]),
+                                         deterministic=True)
+        return action
+
+    return act
 
 
 class _Timing:
@@ -86,6 +102,7 @@ class _Timing:
         self.env_id, self.policy = env_id, policy
         self.env = gym.make(env_id, disable_env_checker=True)
         self.scene = self.env.unwrapped.scene   # as registered: the oracle is blind to each episode's draws
+        self.model = policy_in_env(shipped_model(env_id), env_id)[1] if policy == SHIPPED else None
         self.steps: list[float] = []
         self.resets: list[float] = []
         self.caught = 0
@@ -95,14 +112,14 @@ class _Timing:
 
     def run_episodes(self, episodes: int, seed: int, timed: bool = True) -> None:
         """Run ``episodes`` episodes seeded ``seed, seed + 1, ...``, timing each call."""
-        choose = _chooser(self.policy, self.scene, seed)
+        choose = _chooser(self.policy, self.model, self.scene, seed)
         for episode in range(episodes):
             compiled, start = COMPILATIONS.count, time.perf_counter()
             obs, _ = self.env.reset(seed=seed + episode)
             resets = [time.perf_counter() - start] if COMPILATIONS.count == compiled else []
-            done, steps, caught, left_out = False, [], 0, 1 - len(resets)
+            done, steps, caught, left_out, first = False, [], 0, 1 - len(resets), True
             while not done:
-                action = choose(obs)
+                action, first = choose(obs, first), False
                 compiled, start = COMPILATIONS.count, time.perf_counter()
                 obs, _, terminated, truncated, info = self.env.step(action)
                 if COMPILATIONS.count == compiled:
@@ -122,7 +139,8 @@ class _Timing:
         """The figures of every timed call (``base_rate``: NetCatch-v0's throws/s, None for itself)."""
         rate = len(self.steps) / (sum(self.steps) + sum(self.resets))
         return SpeedRow(self.env_id, self.policy, self.episodes, len(self.steps), rate, _tails(self.steps),
-                        _tails(self.resets), self.caught / len(self.steps), rate / (base_rate or rate), self.left_out)
+                        _tails(self.resets), self.caught / len(self.steps), rate / (base_rate or rate), self.left_out,
+                        shipped_model(self.env_id).name if self.policy == SHIPPED else "")
 
 
 def _tails(seconds: list[float]) -> tuple[float, float, float]:

@@ -1,7 +1,7 @@
 """Every registered id's speed as a user pays it (agents/variant_speed.py): whole episodes with
-resets under the ballistic oracle and random actions, interleaved over rounds, as ratios to
-NetCatch-v0 in the same run; where each id's time goes (cProfile); and PPO training's env steps/s
-on NetCatch-v0 and NetCatchWindy-v0.
+resets under the ballistic oracle, random actions and the model shipped for each id, interleaved
+over rounds, as ratios to NetCatch-v0 in the same run; where each id's time goes (cProfile); and
+PPO training's env steps/s on NetCatch-v0 and NetCatchWindy-v0.
 
 Usage::
 

@@ -20,13 +20,19 @@ def _tails(values: Sequence[float]) -> str:
 def to_markdown(rows: Sequence[Mapping[str, Any]], training: Mapping[str, Sequence[float]] | None = None,
                 profile: Mapping[str, Mapping[str, Mapping[str, float]]] | None = None) -> str:
     """One line per id and policy (throws/s with resets, the ratio to NetCatch-v0 under the same
-    policy, p50 / p99 / max of a step and of a reset); under it, PPO training's env steps/s and
+    policy, p50 / p99 / max of a step and of a reset), the rows of the models shipped for the ids
+    (those with a ``model``) in a table of their own beside; under them, PPO training's env steps/s and
     where each id's time goes (``profile``: id -> policy -> phase -> share)."""
-    lines = ["| id | policy | throws | caught | throws/s | vs NetCatch-v0 | step p50 / p99 / max (ms) | "
-             "reset p50 / p99 / max (ms) |", "|---|---|---:|---:|---:|---:|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['env_id']} | {r['policy']} | {r['throws']} | {100 * r['capture_rate']:.1f}% | "
-                     f"{r['throws_per_s']:.1f} | {r['ratio']:.2f}x | {_tails(r['step_ms'])} | {_tails(r['reset_ms'])} |")
+    lines = []
+    for column, chosen in (("policy", [r for r in rows if not r.get("model")]),
+                           ("shipped model", [r for r in rows if r.get("model")])):
+        if not chosen:
+            continue
+        lines += [*([""] if lines else []), f"| id | {column} | throws | caught | throws/s | vs NetCatch-v0 | "
+                  "step p50 / p99 / max (ms) | reset p50 / p99 / max (ms) |", "|---|---|---:|---:|---:|---:|---|---|"]
+        lines += [f"| {r['env_id']} | {r.get('model') or r['policy']} | {r['throws']} | {100 * r['capture_rate']:.1f}% | "
+                  f"{r['throws_per_s']:.1f} | {r['ratio']:.2f}x | {_tails(r['step_ms'])} | {_tails(r['reset_ms'])} |"
+                  for r in chosen]
     if training:
         base = median(training[BASE_ID])
         lines += ["", "| PPO training (SB3, 8 SubprocVecEnv workers, from scratch) | env steps/s | vs NetCatch-v0 |",
