@@ -305,8 +305,9 @@ class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
             launch_velocity(*self.launch_noise.apply(*intended, self.np_random), self.thrower)
         launch = self.thrower.position
         self._flight = velocity
-        watchdog = Watchdog(f"{self.spec.id if self.spec else type(self).__name__} step {self._throws_done + 1} (the "
-                            f"throw from {launch.tolist()} m at {velocity.tolist()} m/s, then the pause)")
+        step = self._throws_done + 1
+        watchdog = Watchdog(lambda: f"{self.spec.id if self.spec else type(self).__name__} step {step} (the throw from "
+                                    f"{launch.tolist()} m at {velocity.tolist()} m/s, then the pause)")
         result = throw(self.sim, launch, velocity, fast=self.fast, film=self._film, observer=watchdog)
         settled = Pause()
         if self._throws_done + 1 < self.balls_per_episode:  # the net settles for the next throw (none after the last)

@@ -26,14 +26,15 @@ MAX_SECONDS = 120.0
 
 class Watchdog:
     """Bounds a run to ``max_requests`` requests and ``max_seconds`` wall seconds (compiling
-    left out; by default :data:`MAX_REQUESTS` and :data:`MAX_SECONDS`) from its creation; ``what`` names the run for the error (e.g. the throw's launch).
+    left out; by default :data:`MAX_REQUESTS` and :data:`MAX_SECONDS`) from its creation;
+    ``describe()`` names the run for the error (e.g. the throw's launch), called only then.
     Call it after every request (pass it as a plan's observer); it raises
     :class:`~netgym.errors.StepTimeoutError` past either bound."""
 
-    def __init__(self, what: str, max_requests: int | None = None, max_seconds: float | None = None,
+    def __init__(self, describe: Callable[[], str], max_requests: int | None = None, max_seconds: float | None = None,
                  clock: Callable[[], float] = time.perf_counter,
                  compiling: Callable[[], float] = compile_seconds) -> None:
-        self.what = what
+        self.describe = describe
         self.max_requests = MAX_REQUESTS if max_requests is None else max_requests
         self.max_seconds = MAX_SECONDS if max_seconds is None else max_seconds
         self.clock, self.compiling = clock, compiling
@@ -49,6 +50,6 @@ class Watchdog:
         seconds = self.seconds()
         if self.requests > self.max_requests or seconds > self.max_seconds:
             raise StepTimeoutError(
-                f"{self.what} was stopped by its watchdog after {self.requests} requests and {seconds:.1f} s "
+                f"{self.describe()} was stopped by its watchdog after {self.requests} requests and {seconds:.1f} s "
                 f"(bounds: {self.max_requests} requests, {self.max_seconds:g} s, compiling left out), at simulated "
                 f"time {sim.state.time!r} s; this is a bug in netgym, please report it with this message")

@@ -80,7 +80,7 @@ def test_a_relaxation_that_takes_no_step_raises_a_named_error(basket: Simulator,
 
 def test_the_watchdog_stops_a_run_past_its_bounds_and_leaves_compiling_out() -> None:
     now, compiled = [0.0], [0.0]
-    dog = Watchdog("the throw of the test", max_requests=3, max_seconds=10.0, clock=lambda: now[0],
+    dog = Watchdog(lambda: "the throw of the test", max_requests=3, max_seconds=10.0, clock=lambda: now[0],
                    compiling=lambda: compiled[0])
     sim = Simulator("basket")
     now[0], compiled[0] = 50.0, 45.0  # 50 s gone by, 45 of them compiling
@@ -89,7 +89,7 @@ def test_the_watchdog_stops_a_run_past_its_bounds_and_leaves_compiling_out() -> 
     now[0] = 56.0
     with pytest.raises(StepTimeoutError, match="the throw of the test was stopped by its watchdog after 2 requests"):
         dog(sim)
-    counting = Watchdog("a run", max_requests=2, clock=lambda: 0.0, compiling=lambda: 0.0)
+    counting = Watchdog(lambda: "a run", max_requests=2, clock=lambda: 0.0, compiling=lambda: 0.0)
     counting(sim)
     counting(sim)
     with pytest.raises(StepTimeoutError, match="after 3 requests"):

@@ -73,9 +73,10 @@ def after_piece(throw: ThrowContext) -> Verdict:
     others, _, at_rest, unreachable = near_check(s.x, s.v, s.inv_mass, s.time, km, watch)
     reason = after_check(throw, at_rest, unreachable, watch.box[:3].copy(), watch.box[3:].copy())
     m = throw.sim.model
-    return Verdict(reason, reason is None and (flight_time(throw) > 0.0 or can_roll_alone(throw)) and (
+    return Verdict(reason, reason is None and (
         others < watch.sleep_speed
-        or far_from_a_slow_scene(s.x, m.n_net, m.ball_radius, m.segments, m.poles, watch, others)))
+        or far_from_a_slow_scene(s.x, m.n_net, m.ball_radius, m.segments, m.poles, watch, others))
+        and (flight_time(throw) > 0.0 or can_roll_alone(throw)))
 
 
 def after_check(throw: ThrowContext, at_rest: bool, unreachable: bool, lo: np.ndarray,
