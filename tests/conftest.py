@@ -4,6 +4,8 @@ When the suite runs on several processes (pytest-xdist, the default), the contro
 compiles the kernels an episode of each scene uses (or loads them from numba's cache), so that
 the workers load them from the cache instead of each compiling them at once. Tests marked
 ``slow`` are handed out first, so that no long test starts last while the other workers idle.
+The suite draws headless: SDL's dummy video driver unless the caller chose one (human mode with no
+display and no driver is an error, tested on its own with the variables removed).
 """
 
 from __future__ import annotations
@@ -14,6 +16,8 @@ import pytest
 from hypothesis import settings
 
 from netgym.physics.simulator import Simulator
+
+os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 
 settings.register_profile("ci", max_examples=25, deadline=None, derandomize=True)
 settings.register_profile("thorough", max_examples=300, deadline=None)

@@ -245,7 +245,8 @@ class Renderer:
                 raise InvalidArgumentError(
                     f'render_mode="human" needs a display for its window: {problem}. Use render_mode="rgb_array" '
                     f'(frames as arrays) or "rgb_array_list" with netgym.wrappers.RecordEpisodeVideo, or set '
-                    f'SDL_VIDEODRIVER=dummy to draw without a window')
+                    f'SDL_VIDEODRIVER=dummy to draw without a window (gymnasium\'s check_env makes every declared mode: '
+                    f'set it there too, or pass skip_render_check=True)')
             pygame.display.init()  # the window only: no audio, whose drivers warn where there is no sound card
             pygame.display.set_caption("NetCatch-v0")
             self._window = pygame.display.set_mode((frame.shape[1], frame.shape[0]))

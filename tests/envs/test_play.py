@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 pygame = pytest.importorskip("pygame")
-os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 
 from netgym.physics.simulator import Simulator  # noqa: E402
 from netgym.play import STEP, Play  # noqa: E402

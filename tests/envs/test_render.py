@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import os
 import sys
 
 import gymnasium as gym
@@ -113,7 +112,6 @@ def test_captions_name_the_throw_and_its_outcome_once_decided() -> None:
 @pytest.mark.slow
 def test_human_mode_runs_headless() -> None:
     pytest.importorskip("pygame")
-    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     env = gym.make("NetCatch-v0", render_mode="human")
     env.unwrapped.metadata = dict(env.unwrapped.metadata, render_fps=1000)  # do not wait in tests
     env.reset(seed=0)
