@@ -116,7 +116,8 @@ class AsymmetricSAC(SAC):
 
     def _setup_model(self) -> None:
         super()._setup_model()
-        self.target_entropy_start = float(self.target_entropy)
+        if not hasattr(self, "target_entropy_start"):  # a loaded model has its own, and a fallen target
+            self.target_entropy_start = float(self.target_entropy)
 
     def train(self, gradient_steps: int, batch_size: int = 64) -> None:
         """SAC's gradient steps, at the target entropy of this point of training."""

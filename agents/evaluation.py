@@ -60,31 +60,42 @@ def wilson_interval(successes: int, trials: int, z: float = 1.96) -> tuple[float
     return max(0.0, centre - half), min(1.0, centre + half)
 
 
-def evaluate(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, seed: int = 0,
-             progress: str | None = None, env_id: str = DEFAULT_ENV, **env_kwargs: Any) -> CaptureRate:
+def episode_outcomes(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, seed: int = 0,
+                     progress: str | None = None, env_id: str = DEFAULT_ENV, **env_kwargs: Any) -> list[str]:
     """Run ``episodes`` episodes of the registered ``env_id`` (its arguments overridden by
-    ``env_kwargs``) seeded ``seed, seed + 1, ...`` and count captured throws; with a
-    ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also be a function of
-    the :class:`NetCatchEnv` that returns the policy (for one that reads the env, such as
-    :class:`~agents.oracle.InformedOracle`). The policy is given its recurrent ``state`` back
-    and ``episode_start`` (as SB3's ``evaluate_policy`` does), so policies with memory work too.
-    Captures are also counted by throw index within the episode (``by_throw``)."""
+    ``env_kwargs``) seeded ``seed, seed + 1, ...``; each episode's outcome as a string of one
+    character a throw, ``"1"`` captured and ``"0"`` not (``"101"``: throws 1 and 3 of 3
+    captured). With a ``progress`` label, a progress bar with ETA on stderr. ``policy`` may also
+    be a function of the :class:`NetCatchEnv` that returns the policy (for one that reads the env,
+    such as :class:`~agents.oracle.InformedOracle`). The policy is given its recurrent ``state``
+    back and ``episode_start`` (as SB3's ``evaluate_policy`` does), so policies with memory work too."""
     env = gym.make(env_id, disable_env_checker=True, **env_kwargs)
     if isinstance(policy, type) or not hasattr(policy, "predict"):
         policy = policy(env.unwrapped)
-    throws = 0
-    by_throw: list[int] = []
+    outcomes = []
     for episode in tqdm(range(episodes), desc=progress, unit="episode", disable=progress is None, leave=False):
         obs, _ = env.reset(seed=seed + episode)
-        done, state, index = False, None, 0
+        done, state, throws = False, None, []
         while not done:
-            action, state = policy.predict(obs, state=state, episode_start=np.array([index == 0]), deterministic=True)
+            action, state = policy.predict(obs, state=state, episode_start=np.array([not throws]), deterministic=True)
             obs, _, terminated, truncated, info = env.step(action)
-            if index == len(by_throw):
-                by_throw.append(0)
-            by_throw[index] += int(info["captured"])
-            throws, index = throws + 1, index + 1
+            throws.append("1" if info["captured"] else "0")
             done = terminated or truncated
+        outcomes.append("".join(throws))
     env.close()
-    captured = sum(by_throw)
-    return CaptureRate(captured, throws, *wilson_interval(captured, throws), tuple(by_throw), episodes)
+    return outcomes
+
+
+def capture_rate(outcomes: list[str]) -> CaptureRate:
+    """The capture rate of episodes' outcomes (:func:`episode_outcomes`), by throw index too."""
+    longest = max((len(episode) for episode in outcomes), default=0)
+    by_throw = tuple(sum(episode[k:k + 1] == "1" for episode in outcomes) for k in range(longest))
+    captured, throws = sum(by_throw), sum(len(episode) for episode in outcomes)
+    return CaptureRate(captured, throws, *wilson_interval(captured, throws), by_throw, len(outcomes))
+
+
+def evaluate(policy: Policy | Callable[[NetCatchEnv], Policy], episodes: int, seed: int = 0,
+             progress: str | None = None, env_id: str = DEFAULT_ENV, **env_kwargs: Any) -> CaptureRate:
+    """The capture rate of ``policy`` over the episodes :func:`episode_outcomes` runs (the same
+    arguments), with its Wilson interval and the captures by throw index within the episode."""
+    return capture_rate(episode_outcomes(policy, episodes, seed, progress, env_id, **env_kwargs))

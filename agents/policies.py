@@ -52,8 +52,8 @@ def shipped_model(env_id: str) -> Path:
 
 CONTRIB_ALGORITHMS = ("TQC", "RecurrentPPO")
 """The algorithms a saved model may come from that sb3-contrib implements."""
-AGENTS_ALGORITHMS = ("AsymmetricSAC",)
-"""The algorithms a saved model may come from that :mod:`agents.asymmetric` implements."""
+AGENTS_ALGORITHMS = {"AsymmetricSAC": "agents.asymmetric", "DrQSAC": "agents.drq"}
+"""The algorithms a saved model may come from that this package implements, and their modules."""
 SB3_ALGORITHMS = ("PPO", "A2C", "SAC", "TD3", "DDPG", *CONTRIB_ALGORITHMS, *AGENTS_ALGORITHMS)
 """The algorithms a saved model may come from: Stable-Baselines3's, :data:`CONTRIB_ALGORITHMS`
 and :data:`AGENTS_ALGORITHMS` (built on Stable-Baselines3)."""
@@ -87,8 +87,7 @@ def load_policy(name: str | Path, scene: str = "basket", algorithm: str | None =
                                 f"checkpoint folder")
     algorithm = by_name[(algorithm or saved_algorithm(name)).upper()]
     contrib = algorithm in CONTRIB_ALGORITHMS
-    module = ("sb3_contrib" if contrib else "agents.asymmetric" if algorithm in AGENTS_ALGORITHMS
-              else "stable_baselines3")
+    module = "sb3_contrib" if contrib else AGENTS_ALGORITHMS.get(algorithm, "stable_baselines3")
     try:
         package = importlib.import_module(module)
     except ImportError as missing:

@@ -113,7 +113,17 @@ class CaptureCurve(BaseCallback):
 
     def _on_training_start(self) -> None:
         self._resumed = time.perf_counter()
-        self._evaluate()
+        if not self.points:  # a resumed curve (restore) has its start already
+            self._evaluate()
+
+    def state(self) -> dict:
+        """What :meth:`restore` needs to go on with this curve in a resumed run."""
+        return {"points": self.points, "best": self._best, "spent": self.training_seconds(), "next": self._next}
+
+    def restore(self, state: dict) -> None:
+        """Go on with the curve whose :meth:`state` was ``state``."""
+        self.points = [tuple(point) for point in state["points"]]
+        self._best, self._spent, self._next = state["best"], state["spent"], state["next"]
 
     def latest_rate(self) -> float | None:
         """The capture rate of the latest evaluation, None before the first."""

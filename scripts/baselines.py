@@ -16,6 +16,7 @@ Usage::
     python scripts/baselines.py --quick --out /tmp/baselines          # about a minute, for CI
     python scripts/baselines.py --out runs/long --algos sac_asym --ids NetCatchWindy-v0 --budget 184320
     python scripts/baselines.py --report --out docs/results/baselines # the docs' report and figure
+    python scripts/baselines.py --plan --out docs/results/baselines   # what is left, in CPU hours
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from pathlib import Path
 
 from agents.baselines.grid import ALGORITHMS, BUDGETS, grid
 from agents.baselines.report import write_report
-from agents.baselines.runner import run_missing
+from agents.baselines.runner import missing, run_missing
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -40,6 +41,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local processes (default: one a core)")
     parser.add_argument("--address", help="run on the Ray cluster at this address (e.g. auto) instead")
     parser.add_argument("--quick", action="store_true", help="tiny budgets, one seed, two cheap ids")
+    parser.add_argument("--plan", action="store_true",
+                        help="run nothing: print the runs left under --out and their estimated CPU hours")
     parser.add_argument("--report", action="store_true",
                         help="run nothing: only write the report and figure from the result files under --out")
     return parser
@@ -48,8 +51,14 @@ def build_parser() -> argparse.ArgumentParser:
 def main() -> None:
     """Parse arguments, run what is missing, write the report."""
     args = build_parser().parse_args()
+    runs = grid(args.algos, args.ids, args.seeds, quick=args.quick, budget=args.budget)
+    if args.plan:
+        left = missing(runs, args.out)
+        hours = sum(run.cost for run in left) / 3600
+        print(f"{len(left)} of {len(runs)} runs left under {args.out}: about {hours:.1f} CPU hours, "
+              f"{hours / args.workers:.1f} hours on {args.workers} workers (estimates: agents/baselines/grid.py)")
+        return
     if not args.report:
-        runs = grid(args.algos, args.ids, args.seeds, quick=args.quick, budget=args.budget)
         run_missing(runs, args.out, workers=args.workers, address=args.address)
     print(f"wrote {write_report(args.out)}")
 

@@ -1,6 +1,9 @@
 """Run the baseline runs whose result files are missing: in local worker processes (the default)
-or as Ray tasks on a cluster. Each result is written the moment its run ends, atomically, so a
-runner killed at any point and started again runs only what is missing and loses nothing."""
+or as Ray tasks on a cluster. Each result is written the moment its run ends, atomically, and a
+learner keeps checkpoints while it trains (:mod:`~agents.baselines.checkpoints`), so a runner
+killed at any point and started again runs only what is missing, each run from its latest
+checkpoint. An output folder holds the runs of one budget protocol: a run whose result there has
+another budget is refused, never overwritten."""
 
 from __future__ import annotations
 
@@ -15,7 +18,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import Any
 
-from agents.baselines.grid import Run
+from agents.baselines.grid import MODELS, Run
 from agents.baselines.runs import execute
 from agents.evaluation import CaptureRate, evaluate
 from agents.policies import policy_in_env
@@ -24,7 +27,6 @@ from netgym.bench.results import read_results, write_results
 from netgym.errors import InvalidArgumentError
 
 PR_SET_PDEATHSIG = 1
-MODELS = "models"
 
 
 def evaluate_saved(out: Path, algorithm: str, env_id: str, episodes: int, seed: int) -> dict[Path, CaptureRate]:
@@ -37,18 +39,20 @@ def evaluate_saved(out: Path, algorithm: str, env_id: str, episodes: int, seed: 
         raise InvalidArgumentError(f"no saved models under {out / MODELS / algorithm / env_id}")
     return {path: evaluate(policy_in_env(path, env_id)[1], episodes, seed=seed, progress=path.stem, env_id=env_id)
             for path in models}
-"""The folder under the output folder where each learner's final model is saved
-(``models/ALGORITHM/ENV_ID/seed_K.zip``; not committed with the result files)."""
 
 
 def done(run: Run, out: Path) -> bool:
-    """Whether ``run``'s result file under ``out`` is there, complete and of the run's budget (a
-    file of another budget is the result of an earlier protocol: the run is made again)."""
+    """Whether ``run``'s result file under ``out`` is there and complete; InvalidArgumentError
+    when it is the result of another budget (runs of another budget go to a folder of their own)."""
     try:
         figures = read_results(run.path(out))["figures"]
     except (FileNotFoundError, InvalidArgumentError, json.JSONDecodeError):
         return False
-    return "final" in figures and figures.get("budget") == run.budget
+    if "final" in figures and figures.get("budget") != run.budget:
+        raise InvalidArgumentError(
+            f"{run.path(out)} holds a run of {figures.get('budget')} steps, not {run.budget}: write runs of another "
+            f"budget to a folder of their own (--out), so that no result of one is overwritten by the other's")
+    return "final" in figures
 
 
 def missing(runs: list[Run], out: Path) -> list[Run]:
@@ -72,21 +76,21 @@ Outcome = tuple[Run, "dict[str, Any] | Exception"]
 """A run and its record, or the exception that ended it."""
 
 
-def _local(runs: list[Run], workers: int, models: Path) -> Iterator[Outcome]:
+def _local(runs: list[Run], workers: int, out: Path) -> Iterator[Outcome]:
     """Each run's outcome as it ends, from ``workers`` processes started fresh (spawn) after the
-    kernels of the runs' ids are compiled once here; the models are saved under ``models``."""
+    kernels of the runs' ids are compiled once here; checkpoints and models under ``out``."""
     _compile(list(dict.fromkeys(run.env_id for run in runs)))
     context = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(workers, mp_context=context, initializer=_die_with_parent) as pool:
-        futures = {pool.submit(execute, run, models): run for run in runs}
+        futures = {pool.submit(execute, run, out): run for run in runs}
         for future in as_completed(futures):
             yield futures[future], future.exception() or future.result()
 
 
-def _ray(runs: list[Run], address: str, models: Path) -> Iterator[Outcome]:
+def _ray(runs: list[Run], address: str, out: Path) -> Iterator[Outcome]:
     """Each run's outcome as it ends, from Ray tasks (one CPU each) on the cluster at
-    ``address``; the kernels are compiled first on every node, one task each; the models are
-    saved under ``models`` on the node that trained them."""
+    ``address``; the kernels are compiled first on every node, one task each; checkpoints and
+    models are kept under ``out`` on the node that trains the run."""
     import ray
     from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
 
@@ -97,7 +101,7 @@ def _ray(runs: list[Run], address: str, models: Path) -> Iterator[Outcome]:
     ray.get([warm.options(scheduling_strategy=NodeAffinitySchedulingStrategy(node, soft=False)).remote(ids)
              for node in nodes])
     task = ray.remote(num_cpus=1)(execute)
-    pending = {task.remote(run, models): run for run in runs}
+    pending = {task.remote(run, out): run for run in runs}
     while pending:
         ready, _ = ray.wait(list(pending), num_returns=1)
         run = pending.pop(ready[0])
@@ -121,8 +125,7 @@ def run_missing(runs: list[Run], out: Path, workers: int = 2, address: str | Non
     if not todo:
         return []
     total, spent, start = sum(run.cost for run in todo), 0, time.perf_counter()
-    models = out / MODELS
-    records = _ray(todo, address, models) if address else _local(todo, workers, models)
+    records = _ray(todo, address, out) if address else _local(todo, workers, out)
     failed = []
     for k, (run, record) in enumerate(records, start=1):
         spent += run.cost

@@ -19,7 +19,7 @@ from scipy import stats
 
 from agents.baselines import grid as grid_module
 from agents.baselines import report
-from agents.baselines.grid import ALGORITHMS, BUDGETS, REFERENCES, grid
+from agents.baselines.grid import ALGORITHMS, BUDGETS, LEFT_OUT, REFERENCES, TRAIN_SEED_STRIDE, grid, table_budget
 from agents.baselines.runner import done, missing
 from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
 from agents.hyperparams import action_noise, algorithm_kwargs, env_ids, load, yml
@@ -104,8 +104,9 @@ def test_every_algorithms_settings_are_arguments_of_its_class(algorithm: str) ->
 def test_grid_gives_every_algorithm_its_ids_budget_and_each_id_its_references() -> None:
     runs = grid()
     learners = [run for run in runs if run.algorithm not in REFERENCES]
-    assert {run.algorithm for run in learners} == set(ALGORITHMS)
-    assert all(run.budget == BUDGETS[run.env_id] and run.env_id in env_ids(yml(run.algorithm)) for run in learners)
+    assert {run.algorithm for run in learners} == set(ALGORITHMS) - set(LEFT_OUT)
+    assert all(run.budget == table_budget(run.env_id, algorithm=run.algorithm) and run.env_id in env_ids(yml(run.algorithm))
+               for run in learners)
     ids = {run.env_id for run in runs}
     assert {(run.algorithm, run.env_id) for run in runs if run.algorithm in REFERENCES} == \
         {(reference, env_id) for reference in REFERENCES for env_id in ids}
@@ -156,10 +157,88 @@ def test_a_run_is_done_only_with_a_complete_result_file_of_its_budget(tmp_path: 
     run.path(tmp_path).parent.mkdir(parents=True)
     run.path(tmp_path).write_text('{"figures": {"fin')  # cut short: never what write_results leaves
     assert not done(run, tmp_path)
-    write_results(run.path(tmp_path), {"budget": run.budget + 512, "final": {"rate": 1.0}})  # an earlier protocol's
-    assert not done(run, tmp_path)
+    write_results(run.path(tmp_path), {"budget": run.budget + 512, "final": {"rate": 1.0}})  # another protocol's
+    with pytest.raises(InvalidArgumentError, match=f"holds a run of {run.budget + 512} steps, not {run.budget}.*--out"):
+        done(run, tmp_path)  # refused, never overwritten
     write_results(run.path(tmp_path), {"budget": run.budget, "final": {"rate": 1.0}})
     assert done(run, tmp_path) and missing([run], tmp_path) == []
+
+
+def test_no_two_runs_share_a_training_episode_stream_and_none_meets_the_evaluations() -> None:
+    from agents.baselines.runs import RESUME_STRIDE
+
+    streams = {}
+    for run in grid():
+        if run.budget:
+            n_envs = load(yml(run.algorithm), run.env_id).get("n_envs", 1)
+            assert n_envs <= RESUME_STRIDE
+            first = TRAIN_SEED_STRIDE * run.seed
+            streams[run.name] = set(range(first, first + TRAIN_SEED_STRIDE))  # with every resumption's
+    by_cell: dict[tuple[str, str], list[set[int]]] = {}
+    for name, seeds in streams.items():
+        algorithm, env_id, _ = name.split("/")
+        by_cell.setdefault((algorithm, env_id), []).append(seeds)
+    for blocks in by_cell.values():
+        assert sum(map(len, blocks)) == len(set().union(*blocks))
+    everything = set().union(*streams.values())
+    assert max(everything) < min(grid_module.FINAL_SEED, grid_module.CURVE_SEED)
+    assert grid_module.FINAL_SEED + grid_module.FINAL_EPISODES <= grid_module.CURVE_SEED
+    with pytest.raises(InvalidArgumentError, match="seeds \\[1000\\]"):
+        grid(["sac"], ["NetCatch-v0"], [1000])
+
+
+def test_a_result_records_each_episodes_outcome_its_commit_and_a_relative_command(tmp_path: Path) -> None:
+    from agents.baselines.runs import execute
+
+    reference = next(run for run in grid(["sac"], ["NetCatchWindy-v0"], quick=True) if run.algorithm == "blind")
+    record = execute(reference)
+    final = record["final"]
+    assert len(final["outcomes"]) == final["episodes"] == reference.final_episodes
+    assert all(len(episode) == 5 and set(episode) <= {"0", "1"} for episode in final["outcomes"])
+    assert final["captured"] == sum(episode.count("1") for episode in final["outcomes"])
+    assert list(final["by_throw"]) == [sum(episode[k] == "1" for episode in final["outcomes"]) for k in range(5)]
+    versions = record["versions"]
+    assert len(versions["commit"]) == 40 and isinstance(versions["tree_clean"], bool) and versions["numba"]
+    out = ROOT / "runs" / "some-table"
+    assert reference.command(out)[:3] == ["scripts/baselines.py", "--out", "runs/some-table"]
+    assert not any(part.startswith("/") for part in reference.command(tmp_path))
+
+
+@pytest.mark.slow
+def test_a_learner_killed_mid_training_resumes_from_its_checkpoint(tmp_path: Path, monkeypatch) -> None:
+    """A checkpoint at every rollout; the run dies after its third: run again, it goes on from
+    the third's steps (its curve kept, new episode streams), ends on its budget, and its
+    checkpoint is gone once its result is in."""
+    from agents.baselines import checkpoints
+    from agents.baselines.runs import execute
+
+    run = next(run for run in grid(["sac"], ["NetCatch-v0"], quick=True) if run.algorithm == "sac")
+    monkeypatch.setattr(checkpoints, "EVERY_S", 0.0)
+    written, write = [], checkpoints.Checkpointer.write
+
+    def write_then_die(self) -> None:
+        write(self)
+        written.append(self.model.num_timesteps)
+        if len(written) == 3:
+            raise KeyboardInterrupt("killed")
+
+    monkeypatch.setattr(checkpoints.Checkpointer, "write", write_then_die)
+    with pytest.raises(KeyboardInterrupt):
+        execute(run, tmp_path)
+    folder = checkpoints.checkpoint_folder(tmp_path, run.name)
+    state = checkpoints.load_state(folder)
+    assert state["steps"] == written[-1] > 0 and state["resumed_at"] == []
+    monkeypatch.setattr(checkpoints.Checkpointer, "write", write)
+    monkeypatch.setattr(checkpoints, "EVERY_S", 1e9)
+    record = execute(run, tmp_path)
+    assert record["resumed_at"] == [written[-1]] and record["env_steps"] == run.budget
+    assert record["env_seeds"] == [TRAIN_SEED_STRIDE * run.seed, TRAIN_SEED_STRIDE * run.seed + 8]
+    steps = [point[0] for point in record["curve"]["points"]]
+    assert steps == sorted(set(steps)) and steps[0] == 0 and steps[-1] == run.budget
+    kept = state["curve"]["points"]
+    assert [list(point) for point in record["curve"]["points"][:len(kept)]] == kept
+    assert record["cpu_s"] >= state["spent"]["cpu_s"] and not folder.exists()
+    assert (tmp_path / "models" / f"{run.name}.zip").is_file()
 
 
 def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, monkeypatch) -> None:
@@ -167,7 +246,7 @@ def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, mon
 
     failing, passing = grid(quick=True)[:2]
     outcomes = [(failing, ValueError("boom")), (passing, {"budget": passing.budget, "final": {"rate": 1.0}, "wall_s": 1.0})]
-    monkeypatch.setattr(runner, "_local", lambda runs, workers, models: iter(outcomes))
+    monkeypatch.setattr(runner, "_local", lambda runs, workers, out: iter(outcomes))
     lines: list[str] = []
     with pytest.raises(RuntimeError, match=failing.name):
         runner.run_missing([failing, passing], tmp_path, report=lines.append)
