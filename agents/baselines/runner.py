@@ -18,7 +18,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import Any
 
-from agents.baselines.grid import MODELS, Run
+from agents.baselines.grid import FINAL_SEED, MODELS, Run
 from agents.baselines.runs import execute
 from agents.evaluation import CaptureRate, evaluate
 from agents.policies import policy_in_env
@@ -43,16 +43,25 @@ def evaluate_saved(out: Path, algorithm: str, env_id: str, episodes: int, seed: 
 
 def done(run: Run, out: Path) -> bool:
     """Whether ``run``'s result file under ``out`` is there and complete; InvalidArgumentError
-    when it is the result of another budget (runs of another budget go to a folder of their own)."""
+    when it is the result of another protocol (another budget, or another final evaluation):
+    runs of another protocol go to a folder of their own."""
     try:
         figures = read_results(run.path(out))["figures"]
     except (FileNotFoundError, InvalidArgumentError, json.JSONDecodeError):
         return False
-    if "final" in figures and figures.get("budget") != run.budget:
+    if "final" not in figures:
+        return False
+    theirs = (figures.get("budget"), figures["final"].get("episodes"), figures["final"].get("seed"))
+    ours = (run.budget, run.final_episodes, FINAL_SEED)
+    if theirs != ours:
         raise InvalidArgumentError(
-            f"{run.path(out)} holds a run of {figures.get('budget')} steps, not {run.budget}: write runs of another "
-            f"budget to a folder of their own (--out), so that no result of one is overwritten by the other's")
-    return "final" in figures
+            f"{run.path(out)} holds a run of another protocol ({_protocol(*theirs)}), not {_protocol(*ours)}: write "
+            f"runs of another protocol to a folder of their own (--out), so that no result of one is overwritten")
+    return True
+
+
+def _protocol(budget: int | None, episodes: int | None, seed: int | None) -> str:
+    return f"{budget} steps, {episodes} final episodes seeded from {seed}"
 
 
 def missing(runs: list[Run], out: Path) -> list[Run]:

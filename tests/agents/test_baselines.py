@@ -151,16 +151,20 @@ def test_an_env_wrapper_setting_names_a_training_wrapper() -> None:
         env_wrapper({"env_wrapper": "os.system"})
 
 
-def test_a_run_is_done_only_with_a_complete_result_file_of_its_budget(tmp_path: Path) -> None:
+def test_a_run_is_done_only_with_a_complete_result_file_of_its_protocol(tmp_path: Path) -> None:
     run = grid(quick=True)[0]
     assert missing([run], tmp_path) == [run]
     run.path(tmp_path).parent.mkdir(parents=True)
     run.path(tmp_path).write_text('{"figures": {"fin')  # cut short: never what write_results leaves
     assert not done(run, tmp_path)
-    write_results(run.path(tmp_path), {"budget": run.budget + 512, "final": {"rate": 1.0}})  # another protocol's
-    with pytest.raises(InvalidArgumentError, match=f"holds a run of {run.budget + 512} steps, not {run.budget}.*--out"):
-        done(run, tmp_path)  # refused, never overwritten
-    write_results(run.path(tmp_path), {"budget": run.budget, "final": {"rate": 1.0}})
+    final = {"rate": 1.0, "episodes": run.final_episodes, "seed": grid_module.FINAL_SEED}
+    for other, wrong in (({"budget": run.budget + 512}, f"{run.budget + 512} steps"),
+                         ({"final": {**final, "episodes": 100}}, "100 final episodes"),
+                         ({"final": {**final, "seed": 10_000}}, "seeded from 10000")):
+        write_results(run.path(tmp_path), {"budget": run.budget, "final": final, **other})  # another protocol's
+        with pytest.raises(InvalidArgumentError, match=f"another protocol \\(.*{wrong}.*\\), not .*--out"):
+            done(run, tmp_path)  # refused, never overwritten
+    write_results(run.path(tmp_path), {"budget": run.budget, "final": final})
     assert done(run, tmp_path) and missing([run], tmp_path) == []
 
 
@@ -245,7 +249,8 @@ def test_a_failed_run_is_reported_and_the_others_are_written(tmp_path: Path, mon
     from agents.baselines import runner
 
     failing, passing = grid(quick=True)[:2]
-    outcomes = [(failing, ValueError("boom")), (passing, {"budget": passing.budget, "final": {"rate": 1.0}, "wall_s": 1.0})]
+    final = {"rate": 1.0, "episodes": passing.final_episodes, "seed": grid_module.FINAL_SEED}
+    outcomes = [(failing, ValueError("boom")), (passing, {"budget": passing.budget, "final": final, "wall_s": 1.0})]
     monkeypatch.setattr(runner, "_local", lambda runs, workers, out: iter(outcomes))
     lines: list[str] = []
     with pytest.raises(RuntimeError, match=failing.name):
