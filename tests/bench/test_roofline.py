@@ -38,3 +38,23 @@ def test_the_floor_is_the_highest_roof_and_the_counts_are_the_passs() -> None:
     assert len(floors) == 3 and figures["floor_ns"] == max(floors)
     assert figures["bytes_per_spring"] == 8 * (2 + 3 + 6 + 6 + 12) and figures["springs"] == 3250
     assert figures["measured_ns_per_spring"] > 0
+
+
+def test_the_parts_timed_alone_do_the_passs_own_work() -> None:
+    """The copies put the state in the pass's columns; the dense force loops alone leave the
+    forces the whole pass leaves; the parts' and rest's times add up to the whole pass."""
+    x, v, springs, f = roofline.spring_pass_arguments()
+    v = np.random.default_rng(0).normal(0.0, 0.1, v.shape)  # the dampers act too
+    roofline.forces.spring_forces(x, v, springs, f)
+    whole = springs.dense_forces.copy()
+    springs.dense_forces[:] = np.nan
+    roofline._copies(x, v, springs, np.zeros_like(f), 1)
+    n = springs.n_particles
+    columns = springs.columns
+    assert np.array_equal(columns[roofline.forces.POSITIONS][:, :n], x.T)
+    assert np.array_equal(columns[roofline.forces.VELOCITIES][:, :n], v.T)
+    roofline._dense_forces(x, v, springs, f, 1)
+    assert np.array_equal(springs.dense_forces, whole, equal_nan=True)
+    parts = roofline.spring_pass_parts((x, v, springs, f), repeats=2)
+    assert set(parts) == {*roofline.PARTS, "sparse groups and the rest", "whole pass"}
+    assert np.isclose(sum(value for name, value in parts.items() if name != "whole pass"), parts["whole pass"])

@@ -135,6 +135,58 @@ def spring_pass_seconds(arguments: tuple[np.ndarray, ...], repeats: int = 20) ->
     return _best(lambda: _spring_passes(*arguments, PASSES_A_TIMING), repeats) / PASSES_A_TIMING
 
 
+@njit(cache=True, error_model="numpy")
+def _copies(x, v, springs, f, passes):
+    """The pass's copies alone: positions, velocities and forces into columns, forces back."""
+    columns, n = springs.columns, springs.n_particles
+    for _ in range(passes):
+        forces._to_columns(x, columns[forces.POSITIONS], n)
+        forces._to_columns(v, columns[forces.VELOCITIES], n)
+        forces._to_columns(f, columns[forces.TOTALS], n)
+        forces._from_columns(columns[forces.TOTALS], f, n)
+
+
+@njit(cache=True, error_model="numpy")
+def _dense_forces(x, v, springs, f, passes):
+    """The dense groups' force loops alone (each slot's force on both its particles)."""
+    columns = springs.columns
+    for _ in range(passes):
+        for group in springs.groups:
+            if group.dense:
+                forces._dense_group_forces(columns[forces.POSITIONS], columns[forces.VELOCITIES], springs.dense_params,
+                                           springs.dense_forces, group.offset, group.first, group.length,
+                                           group.start, group.ks, group.kd)
+
+
+@njit(cache=True, error_model="numpy")
+def _dense_adds(x, v, springs, f, passes):
+    """The dense groups' additions alone (both planes of forces into the particles' totals)."""
+    totals = springs.columns[forces.TOTALS]
+    for _ in range(passes):
+        for group in springs.groups:
+            if group.dense:
+                forces._add_dense_group(totals, springs.dense_forces[forces.ON_SECOND], group.first + group.offset,
+                                        group.length, group.start)
+                forces._add_dense_group(totals, springs.dense_forces[forces.ON_FIRST], group.first, group.length,
+                                        group.start)
+
+
+PARTS = {"column copies": _copies, "dense force loops": _dense_forces, "dense additions": _dense_adds}
+"""The parts of the spring pass timed alone by :func:`spring_pass_parts`, each calling the pass's
+own inlined kernels; the rest of the pass is its sparse groups and its loops over groups."""
+
+
+def spring_pass_parts(arguments: tuple[np.ndarray, ...], repeats: int = 20) -> dict[str, float]:
+    """Seconds a pass of each of :data:`PARTS` alone, timed as :func:`spring_pass_seconds` times
+    the whole pass, and of the rest (the whole pass less the parts: the sparse groups and the
+    loops over groups); the dense slots outnumber the springs they hold (registers filled out)."""
+    forces.spring_forces(*arguments)
+    parts = {name: _best(lambda part=part: part(*arguments, PASSES_A_TIMING), repeats) / PASSES_A_TIMING
+             for name, part in PARTS.items()}
+    whole = spring_pass_seconds(arguments, repeats)
+    return {**parts, "sparse groups and the rest": whole - sum(parts.values()), "whole pass": whole}
+
+
 def packed_instructions(kernel, *args) -> tuple[int, int]:
     """(packed, scalar) double-precision arithmetic instructions in the machine code of
     ``kernel`` (a netgym numba kernel) compiled for ``args``: packed ones (``...pd`` on ymm or
@@ -161,6 +213,9 @@ def roofline(scene: str = "basket", quick: bool = False) -> dict[str, float]:
     dram = bandwidth((16 if quick else 768) * 1024 * 1024, 2 if quick else 5)
     peak = fma_peak(2 if quick else 10)
     sqrt_div = sqrt_div_rate(repeats)
+    parts = spring_pass_parts(arguments, 2 if quick else 20)
+    springs = arguments[2]
+    dense_slots = int(springs.groups["length"][springs.groups["dense"]].sum())
     floors = {"memory (L2)": 1e9 * SPRING_BYTES / l2, "arithmetic": 1e9 * SPRING_FLOPS / peak,
               "square root and division": 1e9 * SPRING_SQRT_DIV / sqrt_div}
     return {"scene": scene, "springs": n_springs, "bytes_per_spring": SPRING_BYTES,
@@ -168,7 +223,9 @@ def roofline(scene: str = "basket", quick: bool = False) -> dict[str, float]:
             "fma_peak_gflop_s": peak / 1e9, "sqrt_div_per_ns": sqrt_div / 1e9,
             **{f"floor_ns_{name}": value for name, value in floors.items()},
             "floor_ns": max(floors.values()), "measured_ns_per_spring": 1e9 * seconds / n_springs,
-            "spring_pass_packed_scalar_instructions": packed_instructions(forces.spring_forces, *arguments)}
+            "spring_pass_packed_scalar_instructions": packed_instructions(forces.spring_forces, *arguments),
+            "dense_slots": dense_slots, "sparse_springs": int(springs.sparse.shape[0]),
+            "parts_ns_per_spring": {name: 1e9 * value / n_springs for name, value in parts.items()}}
 
 
 def to_markdown(record: dict) -> str:
@@ -188,7 +245,20 @@ def to_markdown(record: dict) -> str:
     lines += ["", f"On the {f['scene']} net ({f['springs']} springs, one thread) the pass takes "
               f"**{f['measured_ns_per_spring']:.2f} ns per spring**, {f['measured_ns_per_spring'] / f['floor_ns']:.1f}x "
               f"its floor of {f['floor_ns']:.2f} ns (the highest roof); its machine code has {packed} packed and "
-              f"{scalar} scalar double-precision arithmetic instructions.", "",
-              f"Source: `docs/results/roofline.json`, written by `{record['command']}` ({record['written']}, "
+              f"{scalar} scalar double-precision arithmetic instructions.", ""]
+    if "parts_ns_per_spring" in f:
+        lines += _parts_table(f) + [""]
+    lines += [f"Source: `docs/results/roofline.json`, written by `{record['command']}` ({record['written']}, "
               f"{record['machine']})."]
     return "\n".join(lines)
+
+
+def _parts_table(f: dict) -> list[str]:
+    """Where the pass's time goes: each part timed alone, ns per spring and its share."""
+    parts, whole = f["parts_ns_per_spring"], f["parts_ns_per_spring"]["whole pass"]
+    lines = [f"Where it goes (each part timed alone, ns per spring of the {f['springs']}; the dense groups run "
+             f"{f['dense_slots']} slots, registers filled out, and {f['sparse_springs']} springs are in sparse groups):",
+             "", "| part of the pass | ns per spring | share |", "|---|---:|---:|"]
+    lines += [f"| {name} | {value:.2f} | {100 * value / whole:.0f}% |" for name, value in parts.items()
+              if name != "whole pass"]
+    return lines + [f"| whole pass | {whole:.2f} | |"]
