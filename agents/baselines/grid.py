@@ -13,7 +13,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from agents.hyperparams import env_ids, yml
+from agents.hyperparams import env_ids, load, yml
 from netgym.errors import InvalidArgumentError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -33,10 +33,6 @@ ALGORITHMS: dict[str, tuple[str, str]] = {
 """Algorithm name (its yml's name) -> (module, class) of its implementation. Two are controls:
 ``sac_sym`` is sac_asym's windy settings with critics that read what the actor reads (not the
 wind), ``sac_drq`` learns from pixels alone (no critic reads the state)."""
-LEFT_OUT = {"ppo_cnn": "its settings' notes (agents/hyperparams/ppo_cnn.yml) put 95% beyond 24 times the "
-                       "pixel budget, about 3 hours a seed on one core, beyond the table's three sessions "
-                       "of two cores; sac_drq is the table's learner from pixels alone"}
-"""Algorithms with settings that the table leaves out, and why (the page says so)."""
 REFERENCES = ("random", "blind", "oracle")
 """The runs that learn nothing: uniform random actions, the ballistic oracle blind to what an
 episode hides (its wind, its ball), and the informed oracle (told them); on pixels they act on the
@@ -55,17 +51,12 @@ BUDGETS: dict[str, int] = {
     "NetCatchRandomized-v0": 20_480,
     "NetCatchRandomized-v1": 30_720,
 }
-"""Environment steps (throws) of every learning run on the id. Multiples of 512, so that PPO's
-rollouts (8 envs x 64 steps; x 128 on pixels) end on the budget. On NetCatch-v0 PPO passed 95% at 12,288-16,384
-steps (docs/AGENTS.md), SAC, TD3 and TQC at 2,000-4,000; on the windy id PPO needed ~40,000 for
-95%. Measured on one core (2026-12-03, 4096 steps from scratch, training only): NetCatch-v0 PPO
-273 steps/s, TD3 150, SAC 103, TQC 89; NetCatchWindy-v0 PPO 166, SAC 91; NetCatchPixels-v0
-PPO-CNN 47. Taking a catching policy's later steps at 60% of those rates, the table of 5 seeds
-is ~27,000 CPU seconds, ~3.8 hours on 2 cores (the limit: 6). NetCatchLongEpisode-v0 asks the
-same aim as NetCatch-v0 into a fuller net, so it gets NetCatch-v0's budget; NetCatchRandomized-v1,
-5 throws with feedback like the windy id, gets the windy id's. Pixels get NetCatch-v0's: the
-asymmetric SAC (sac_asym.yml) caught every throw from 8,192 steps; PPO-CNN, which climbed only
-slowly (ppo_cnn.yml), would need ~115 minutes a seed for 24x that, beyond the table's hours."""
+"""Environment steps (throws) of every learning run on the id (a learner's own budget:
+:data:`LEARNER_BUDGETS`). Multiples of 512, so that PPO's rollouts (8 envs x 64 steps; x 128 on
+pixels) end on the budget. The ids with feedback across 5 throws (NetCatchWindy-v0,
+NetCatchRandomized-v1) get half as many again; NetCatchLongEpisode-v0 asks the same aim as
+NetCatch-v0 into a fuller net and gets its budget; the learning curves on docs/baselines.md show
+where each learner levels off within them."""
 TABLE_IDS = ("NetCatch-v0", "NetCatchGoal-v0", "NetCatchNoisy-v0", "NetCatchWindy-v0", "NetCatchPixels-v0",
              "NetCatchLongEpisode-v0", "NetCatchRandomized-v1")
 """The ids of the table (the default)."""
@@ -116,6 +107,14 @@ CPU_MS_AN_EPISODE: dict[str, float] = {
 """CPU milliseconds of one evaluation episode on each id: the informed oracle's in the same
 table, plus a millisecond a throw for a learner's forward pass (pixels: plus the images drawn).
 For the runner's estimates only."""
+
+PPO_CNN_STEPS = int(load(yml("ppo_cnn"), "NetCatchPixels-v0")["n_timesteps"])
+LEFT_OUT = {"ppo_cnn": f"the budget its settings ask for (agents/hyperparams/ppo_cnn.yml: {PPO_CNN_STEPS:,} steps, "
+                       f"{PPO_CNN_STEPS / BUDGETS['NetCatchPixels-v0']:.0f} times the pixel budget) would cost about "
+                       f"{PPO_CNN_STEPS * CPU_MS_A_STEP['ppo_cnn', 'NetCatchPixels-v0'] * len(SEEDS) / 3.6e6:.0f} CPU "
+                       f"hours for {len(SEEDS)} seeds at its measured cost a step; "
+                       f"sac_drq is the table's learner from pixels alone"}
+"""Algorithms with settings that the table leaves out, and why (the page says so)."""
 
 
 @dataclass(frozen=True)

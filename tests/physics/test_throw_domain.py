@@ -10,7 +10,7 @@ through the opening, checked after every request of both simulations.
 The default (CI) run draws a few derandomized examples for each scene and configuration; the
 long run, before a change to the fast path is called done (docs/CONTRIBUTING.md)::
 
-    HYPOTHESIS_PROFILE=domain python -m pytest tests/physics/test_throw_domain.py --hypothesis-show-statistics
+    HYPOTHESIS_PROFILE=domain python -m pytest -m slow tests/physics/test_throw_domain.py --hypothesis-show-statistics
 
 draws :data:`LONG_EXAMPLES` per scene and configuration (100, or ``NETGYM_DOMAIN_EXAMPLES``;
 1,400 in all). The goal's
