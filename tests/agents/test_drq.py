@@ -29,13 +29,38 @@ def test_random_shift_moves_each_image_by_whole_pixels_within_the_pad() -> None:
         random_shift(torch.rand(1, 3, 84, 80))
 
 
-def _model(steps: int = 0) -> DrQSAC:
+def _model(steps: int = 0, gamma: float = 0.0) -> DrQSAC:
     env = gym.make("NetCatchPixels-v0")
     model = DrQSAC("DrQCnnPolicy", env, seed=0, device="cpu", learning_starts=8, batch_size=8, buffer_size=64,
-                   gamma=0.0, train_freq=4, policy_kwargs=dict(net_arch=[32, 32]))
+                   gamma=gamma, train_freq=4, policy_kwargs=dict(net_arch=[32, 32]))
     if steps:
         model.learn(steps)
     return model
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("gamma", "passes"), [(0.0, 1), (0.5, 2)])
+def test_a_gradient_step_encodes_the_batch_once_and_only_the_critics_move_the_encoder(gamma: float, passes: int,
+                                                                                     monkeypatch) -> None:
+    """One pass of the online encoder a gradient step (two where a discount needs the next
+    images); with the critics' optimiser stopped, the actor's and entropy's steps leave the
+    encoder as it was, and the critics' step moves it."""
+    model = _model(gamma=gamma)
+    model.learning_starts = 10_000
+    model.learn(16)  # fills the buffer, no gradient step
+    encoder = model.policy.critic.features_extractor
+    calls = []
+    encoder.register_forward_hook(lambda *_: calls.append(1))
+    before = [p.detach().clone() for p in encoder.parameters()]
+    actor_before = [p.detach().clone() for p in model.policy.actor.latent_pi.parameters()]
+    monkeypatch.setattr(model.critic.optimizer, "step", lambda *args, **kwargs: None)
+    model.train(gradient_steps=1, batch_size=8)
+    assert len(calls) == passes
+    assert all(torch.equal(a, b) for a, b in zip(encoder.parameters(), before))
+    assert any(not torch.equal(a, b) for a, b in zip(model.policy.actor.latent_pi.parameters(), actor_before))
+    monkeypatch.undo()
+    model.train(gradient_steps=1, batch_size=8)
+    assert any(not torch.equal(a, b) for a, b in zip(encoder.parameters(), before))
 
 
 def test_the_critics_own_and_train_the_encoder_and_the_actor_reads_it_detached() -> None:
