@@ -2,9 +2,15 @@
 
 An algorithm runs on the ids its hyperparameter file (``agents/hyperparams/NAME.yml``, rl_zoo3's
 format) has settings for; the file's ``n_timesteps`` is ignored, every algorithm gets the id's
-:data:`BUDGETS`. Besides the learners, each id has three reference runs, :data:`REFERENCES`: the
-random policy and the informed oracle (the 0 and 1 of the normalised score), and the blind oracle
-between them.
+:data:`BUDGETS` (or its own, :data:`LEARNER_BUDGETS`). Besides the learners, each id has three
+reference runs, :data:`REFERENCES`: the random policy and the informed oracle (the 0 and 1 of the
+normalised score), and the blind oracle between them.
+
+The shipped models, declared before the runs: for each id, the learner with the highest IQM
+capture rate over its seeds (ties: more seeds, then the higher mean), and of its seeds the model
+that catches the most throws of 400 fresh episodes seeded from 50000, neither training's nor the
+table's (``scripts/ship_model.py``); besides, on NetCatchPixels-v0, the same choice among the
+learners from pixels alone (no critic reads the state: sac_drq).
 """
 
 from __future__ import annotations
