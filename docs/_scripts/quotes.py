@@ -35,7 +35,9 @@ REPORT = "docs/BENCHMARKS.md"
 TRAINING_CURVE = ROOT / "docs" / "figures" / "ppo_curve.csv"
 SHIPPED_PPO = "PPO ppo_netcatch.zip"
 BASELINES = RESULTS / "baselines"
-"""The baselines' result files (``scripts/baselines.py --out docs/results/baselines``)."""
+"""The baselines' result files and the statistics stored beside them (``scripts/baselines.py --report --out
+docs/results/baselines`` writes ``stats.json``; without it, or with records it was not computed from, the
+baselines' blocks compute them anew: minutes)."""
 BASELINES_LONG = RESULTS / "baselines_long"
 """Runs beyond the table's budget (``scripts/baselines.py --out docs/results/baselines_long --budget N``)."""
 
@@ -287,6 +289,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "model-agreement": model_agreement_quote,
     "variants-summary": variants_summary,
     "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
+    "baselines-improvement": lambda: baselines.improvement(baselines.load_cells(BASELINES)),
+    "baselines-aggregates": lambda: baselines.aggregates(baselines.load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),
     "baselines-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES)),
     "baselines-shipped": lambda: baselines.shipped(RESULTS, SHIPPED_BASELINES),
@@ -296,6 +300,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "baselines-long-table": lambda: baselines.table(baselines.load_cells(BASELINES_LONG)),
     "baselines-long-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES_LONG),
                                                                 "NetCatchWindy-v0"),
+    "baselines-long-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES_LONG)),
     "learning-curve": lambda: learning_curve("ppo_curve"),
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
     "learning-curve-windy-stack5": lambda: learning_curve("ppo_windy_stack5_curve",

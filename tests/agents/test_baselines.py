@@ -1,5 +1,6 @@
-"""The baselines' runner (agents/baselines, scripts/baselines.py): statistics against known
-answers and scipy, the grid and its hyperparameter files, and a runner killed and started again."""
+"""The baselines' runner (agents/baselines, scripts/baselines.py): the grid and its hyperparameter
+files, and a runner killed and started again (the statistics and the report:
+test_baselines_report.py)."""
 
 from __future__ import annotations
 
@@ -13,73 +14,18 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
-from scipy import stats
 
 from agents.baselines import grid as grid_module
-from agents.baselines import report
+from agents.baselines.report import nowrap
 from agents.baselines.grid import ALGORITHMS, BUDGETS, LEFT_OUT, REFERENCES, TRAIN_SEED_STRIDE, grid, table_budget
 from agents.baselines.runner import done, missing
-from agents.baselines.stats import bootstrap_ci, iqm, normalise, performance_profile
 from agents.hyperparams import action_noise, algorithm_kwargs, env_ids, load, yml
 from agents.policies import policy_in_env, saved_algorithm
 from netgym.bench.results import read_results, write_results
 from netgym.errors import InvalidArgumentError
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-def test_iqm_is_the_mean_of_the_middle_half() -> None:
-    """Of 1..8 the middle half is 3..6, whose mean is 4.5, whatever the array's shape or order."""
-    scores = np.arange(1.0, 9.0)
-    middle = scores[2:6].mean()
-    assert iqm(scores) == pytest.approx(middle)
-    assert iqm(np.random.default_rng(0).permutation(scores).reshape(4, 2)) == pytest.approx(middle)
-    assert iqm(np.stack([scores, 10 * scores]), axis=1) == pytest.approx([middle, 10 * middle])
-
-
-def test_bootstrap_interval_of_a_constant_is_that_constant() -> None:
-    assert bootstrap_ci(np.full(5, 0.7)) == pytest.approx((0.7, 0.7))
-
-
-def test_stratified_bootstrap_resamples_within_each_task() -> None:
-    """Two tasks whose runs all score 0 and all score 1: every stratified resample keeps as many
-    zeros as ones, so the IQM of every resample is the IQM of the scores and the interval is
-    that one point; resampling the pooled runs instead would spread it."""
-    scores = np.stack([np.zeros(4), np.ones(4)], axis=1)
-    assert bootstrap_ci(scores) == pytest.approx((iqm(scores), iqm(scores)))
-    low, high = bootstrap_ci(np.ravel(scores))
-    assert low < iqm(scores) < high
-
-
-def test_bootstrap_interval_agrees_with_scipy() -> None:
-    """One task: the percentile interval of the IQM agrees with scipy.stats.bootstrap's to within
-    a tenth of its width (both estimate the same interval from random resamples)."""
-    sample = np.random.default_rng(1).normal(size=20)
-    ours = np.array(bootstrap_ci(sample, reps=20_000))
-    theirs = stats.bootstrap((sample,), iqm, n_resamples=20_000, method="percentile", random_state=2)
-    reference = np.array([theirs.confidence_interval.low, theirs.confidence_interval.high])
-    assert np.abs(ours - reference).max() < 0.1 * (reference[1] - reference[0])
-
-
-def test_bootstrap_interval_covers_the_true_iqm_about_as_often_as_it_claims() -> None:
-    """Over 200 seeded samples of 20 normal scores the 95% interval holds the distribution's
-    IQM (its mean: it is symmetric) in 85-99% of them (percentile intervals of small samples
-    cover a little less than they claim)."""
-    rng = np.random.default_rng(3)
-    covered = [low <= 0.0 <= high for low, high in
-               (bootstrap_ci(rng.normal(size=20), reps=1000, seed=k) for k in range(200))]
-    assert 0.85 <= np.mean(covered) <= 0.99
-
-
-def test_normalise_puts_random_at_zero_and_the_ceiling_at_one() -> None:
-    assert normalise([0.04, 0.52, 1.0], 0.04, 1.0) == pytest.approx([0.0, 0.5, 1.0])
-
-
-def test_performance_profile_counts_runs_strictly_above_each_threshold() -> None:
-    scores = np.array([[0.1, 0.5], [0.9, 0.5]])
-    assert performance_profile(scores, np.array([0.0, 0.5, 0.9])) == pytest.approx([1.0, 0.25, 0.0])
 
 
 @pytest.mark.parametrize("algorithm", sorted(ALGORITHMS))
@@ -313,7 +259,8 @@ def test_runner_killed_and_started_again_runs_only_the_missing_runs(tmp_path: Pa
         assert figures["seed"] == run.seed and figures["budget"] == run.budget and figures["versions"]["torch"]
         assert figures["final"]["episodes"] == run.final_episodes and figures["final"]["deterministic"]
         assert figures["env_steps"] >= run.budget and (len(figures["curve"]["points"]) >= 2) == (run.budget > 0)
-    assert "| ppo | NetCatch-v0 |" in (out / "report.md").read_text() and (out / "curves.png").stat().st_size > 0
+    assert f"| {nowrap('NetCatch-v0')} | ppo (1) |" in (out / "report.md").read_text()
+    assert (out / "curves-vector.png").stat().st_size > 0
 
 
 @pytest.mark.slow
@@ -325,7 +272,8 @@ def test_quick_mode_runs_the_quick_grid_end_to_end(tmp_path: Path) -> None:
     runs = grid(quick=True)
     assert all(done(run, tmp_path) for run in runs)
     report = (tmp_path / "report.md").read_text()
-    assert all(f"| {run.algorithm} | {run.env_id} |" in report for run in runs)
+    names = {run: f"*{run.algorithm}* (1 run)" if run.budget == 0 else f"{run.algorithm} (1)" for run in runs}
+    assert all(f"| {nowrap(run.env_id)} | {names[run]} |" in report for run in runs)
     assert len(grid_module.QUICK_IDS) == len({run.env_id for run in runs})
     for run in (run for run in runs if run.algorithm not in REFERENCES):  # each model loads with no other argument
         model = tmp_path / "models" / f"{run.name}.zip"
@@ -348,50 +296,6 @@ def test_runs_go_to_a_ray_cluster_as_tasks_with_address(tmp_path: Path) -> None:
     runs = grid(["ppo"], ["NetCatch-v0"], quick=True)
     assert f"{len(runs)} to run on the Ray cluster" in finished.stdout
     assert all(done(run, tmp_path) for run in runs)
-
-
-def _cell(algorithm: str, env_id: str, rates: list[float]) -> list[dict]:
-    """Result records of one cell with these final rates (seeds 0, 1, ...)."""
-    return [{"algorithm": algorithm, "env_id": env_id, "seed": seed, "budget": 512, "final": {"rate": rate}}
-            for seed, rate in enumerate(rates)]
-
-
-def test_the_best_learner_has_the_highest_iqm_and_ties_go_to_more_seeds_then_the_mean() -> None:
-    cells = {("ppo", "NetCatch-v0"): _cell("ppo", "NetCatch-v0", [0.1, 0.9, 0.9, 0.9, 0.9]),
-             ("sac", "NetCatch-v0"): _cell("sac", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95]),
-             ("td3", "NetCatch-v0"): _cell("td3", "NetCatch-v0", [0.9, 0.9, 0.9]),
-             ("ppo", "NetCatchGoal-v0"): _cell("ppo", "NetCatchGoal-v0", [0.5, 0.6, 0.7, 0.8]),
-             ("random", "NetCatch-v0"): _cell("random", "NetCatch-v0", [1.0])}
-    best = report.best_learners(cells)
-    assert best == {"NetCatch-v0": ["sac"], "NetCatchGoal-v0": ["ppo"]}  # the reference's 100% does not count
-    tied = {**cells, ("tqc", "NetCatch-v0"): _cell("tqc", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95])}
-    assert report.best_learners(tied)["NetCatch-v0"] == ["sac", "tqc"]
-    assert report.best_line(tied, "NetCatch-v0").startswith("sac, tqc (tied): 90.0% [")
-    matrix = report.matrix(cells).splitlines()
-    assert matrix[0] == "| algorithm | NetCatch-v0 | NetCatchGoal-v0 |"
-    sac_row = next(line for line in matrix if line.startswith("| sac |"))
-    assert sac_row.split(" | ")[1].startswith("**90.0%") and sac_row.endswith("| - |")
-    assert next(line for line in matrix if line.startswith("| *random* |")).startswith("| *random* | 100.0% | - |")
-    assert report.best_line(cells, "NetCatchGoal-v0").startswith("ppo: 65.0% [") and "over 4 seeds at 512" in \
-        report.best_line(cells, "NetCatchGoal-v0")
-    assert report.best_line(cells, "NetCatchPixels-v0") == "none trained yet"
-
-
-def test_rates_by_throw_are_the_iqm_of_each_throw_over_the_runs_that_counted_them() -> None:
-    """Four runs of 10 episodes counting 5, 6, 7, 8 captures on throw 1 and 10 on throws 2-3
-    (IQM of 50-80% is the middle two's mean, 65%), one old run without the count (left out),
-    a reference counted once; a task no run counted says so."""
-    def run(by_throw: list[int] | None) -> dict:
-        final = {"rate": 0.9, "episodes": 10, **({"by_throw": by_throw} if by_throw else {})}
-        return {"final": final}
-
-    cells = {("sac", "NetCatchWindy-v0"): [run([c, 10, 10]) for c in (8, 5, 7, 6)] + [run(None)],
-             ("blind", "NetCatchWindy-v0"): [run([2, 4, 6])]}
-    lines = report.by_throw(cells, "NetCatchWindy-v0").splitlines()
-    assert lines[0] == "| algorithm | n | throw 1 | throw 2 | throw 3 | throws 2-3 |"
-    assert lines[2] == "| sac | 4 | 65.0% | 100.0% | 100.0% | 100.0% |"
-    assert lines[3] == "| blind | 1 | 20.0% | 40.0% | 60.0% | 50.0% |"
-    assert "No run on NetCatch-v0" in report.by_throw(cells, "NetCatch-v0")
 
 
 def test_every_shipped_baseline_model_is_its_runs_algorithm_on_its_runs_task() -> None:
