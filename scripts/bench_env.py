@@ -26,7 +26,7 @@ import argparse
 
 from agents.bench.env_throughput import SETUPS, env_throughput
 from netgym.bench.accuracy.fast_path import CASES, compare, summarise
-from agents.bench.throws import sample_throws
+from netgym.bench.throws import sample_throws
 
 
 def main() -> None:

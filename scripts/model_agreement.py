@@ -15,9 +15,9 @@ import argparse
 import json
 from pathlib import Path
 
-from agents.bench.throws import sample_throws
 from netgym.bench.accuracy.model_agreement import block, model_agreement
 from netgym.bench.results import write_results
+from netgym.bench.throws import sample_throws
 
 
 def main() -> None:

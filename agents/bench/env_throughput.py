@@ -12,7 +12,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium.vector import AutoresetMode, SyncVectorEnv
 
-from agents.bench.throws import ballistic_oracle
+from agents.oracle import BallisticOracle
 
 SETUPS = {
     "sync": 'Gymnasium SyncVectorEnv of gym.make("NetCatch-v0"), one process',
@@ -39,7 +39,7 @@ def _sync_rate(num_envs: int, steps: int) -> float:
     env = SyncVectorEnv([lambda: gym.make("NetCatch-v0") for _ in range(num_envs)],
                         autoreset_mode=AutoresetMode.SAME_STEP)
     obs, _ = env.reset(seed=0)
-    rate = _noisy_oracle_rate(env, ballistic_oracle("basket"), obs, num_envs, steps)
+    rate = _noisy_oracle_rate(env, BallisticOracle.from_scene("basket"), obs, num_envs, steps)
     env.close()
     return rate
 
@@ -50,7 +50,7 @@ def _subproc_rate(num_envs: int, steps: int) -> float:
     from agents.training import make_training_env
 
     env = make_training_env(num_envs, seed=0)
-    rate = _noisy_oracle_rate(env, ballistic_oracle("basket"), env.reset(), num_envs, steps)
+    rate = _noisy_oracle_rate(env, BallisticOracle.from_scene("basket"), env.reset(), num_envs, steps)
     env.close()
     return rate
 

@@ -22,7 +22,7 @@ from typing import Any, Mapping
 import numpy as np
 from tqdm import tqdm
 
-from agents.bench.throws import ballistic_oracle
+from agents.oracle import BallisticOracle
 from netgym.envs import NetCatchEnv
 from netgym.errors import NetNotAtRestError
 
@@ -77,7 +77,7 @@ def _episodes(job: tuple[str, int, bool, Mapping[str, Any], list[Episode | int],
     creeping on faster than the rest test allows, for the pause's whole time limit) are left out."""
     scene, balls, fast, overrides, todo, progress = job
     env = NetCatchEnv(scene=scene, balls_per_episode=balls, fast=fast, overrides=dict(overrides))
-    oracle = ballistic_oracle(scene)
+    oracle = BallisticOracle.from_scene(scene)
     try:
         _run(env, 0, "noisy oracle", None, oracle)  # compile the kernels outside the timed episodes
     except NetNotAtRestError:

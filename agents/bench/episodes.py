@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.bench.throws import ballistic_oracle
+from agents.oracle import BallisticOracle
 from netgym.arguments import describe_overrides
 from netgym.envs import NetCatchEnv
 
@@ -74,7 +74,7 @@ def _chooser(policy: Any, scene: str, seed: int) -> Callable[[np.ndarray], np.nd
     if policy == "random":
         rng = np.random.default_rng(seed)
         return lambda obs: rng.uniform(-1, 1, 3).astype(np.float32)
-    model = ballistic_oracle(scene) if policy == "oracle" else policy
+    model = BallisticOracle.from_scene(scene) if policy == "oracle" else policy
     return lambda obs: model.predict(obs, deterministic=True)[0]
 
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from agents.bench.throws import sample_throws
+from netgym.bench.throws import sample_throws
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
 
@@ -29,7 +29,7 @@ class HeldCapture:
 
 
 def held_captures(count: int, seed: int) -> list[HeldCapture]:
-    """Throw ``count`` seeded throws (:func:`~agents.bench.throws.sample_throws`) into the empty
+    """Throw ``count`` seeded throws (:func:`~netgym.bench.throws.sample_throws`) into the empty
     goal under ``held``, each from the net at rest, and return the captured ones."""
     sim = Simulator("goal", {"capture_rule": "held"})
     radius, n_net = sim.model.ball_radius, sim.model.n_net

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import time
 
-from agents.bench.throws import sample_throws
 from netgym.bench.settings import outcome_sweeps
+from netgym.bench.throws import sample_throws
 from netgym.errors import SimulationDivergedError
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw

@@ -43,7 +43,6 @@ from agents.bench.report_text import (
     VARIANT_SPEED_NOTES,
     VARIANT_SPEED_TEXT,
 )
-from agents.bench.throws import sample_throws
 from netgym.bench.accuracy import convergence_table, creep, model_agreement, pause_accuracy
 from netgym.bench.accuracy.contact_convergence import RESULT_FILES
 from netgym.bench.accuracy.fast_path import CASES, compare, summarise
@@ -53,6 +52,7 @@ from netgym.bench.results import RESULTS, read_results, write_results
 from netgym.bench.settings import DEFAULT, PEER_SETTING, QUICK_REFERENCE, REFERENCE
 from netgym.bench.speed import roofline, sim_throughput, speed_table
 from netgym.bench.speed.peers import peers
+from netgym.bench.throws import sample_throws
 
 REPORT_RESULTS = RESULTS / "report.json"
 """Where a full run keeps the figures of sections 1-9, which ``scripts/report.py --render`` renders."""

@@ -7,6 +7,8 @@ benchmark report (``agents.bench.report``, which also runs the benchmarks that n
 - :mod:`netgym.bench.accuracy`: work-precision on a strike, convergence through contact, the pause
   against a fine relaxation, creep of balls at rest, stability limits, the fast path against the
   full simulation;
+- :mod:`netgym.bench.throws`: seeded test throws, random and noisy aimed
+  (:class:`~netgym.aim.BallisticAim`);
 - :mod:`netgym.bench.settings`: the integrator settings the report compares;
 - :mod:`netgym.bench.results`: the result files under ``docs/results``;
 - :mod:`netgym.bench.plots`: the report's figures.

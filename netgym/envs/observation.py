@@ -1,8 +1,16 @@
-"""What each entry of a NetCatch observation vector is: its position, meaning and unit."""
+"""What each entry of a NetCatch observation vector is: its position, meaning and unit; and
+what an observation tells an aim: the thrower it describes, the launch through the opening's
+centre."""
 
 from __future__ import annotations
 
+import math
 from enum import IntEnum
+
+import numpy as np
+
+from netgym.aim import BallisticAim
+from netgym.launch import Thrower
 
 
 class ObservationIndex(IntEnum):
@@ -32,3 +40,21 @@ class ObservationIndex(IntEnum):
                         "the plane's first axis (world x for the basket, y for the goal)"), "m"
     LAST_OFFSET_W = 9, "the same along the plane's second axis (world y for the basket, z for the goal)", "m"
     LAST_SHORT = 10, "how far short of the opening's plane that flight stayed (0 when it crossed)", "m"
+
+
+def thrower_of(observation: np.ndarray, centre: np.ndarray) -> Thrower:
+    """The thrower an observation describes, around the opening's ``centre``."""
+    bearing = math.degrees(math.atan2(observation[ObservationIndex.BEARING_SIN],
+                                      observation[ObservationIndex.BEARING_COS]))
+    return Thrower(distance=float(observation[ObservationIndex.DISTANCE]), bearing=bearing,
+                   height=float(observation[ObservationIndex.HEIGHT]) + float(centre[2]),
+                   centre=(float(centre[0]), float(centre[1])))
+
+
+def aim_at_centre(aim: BallisticAim, observation: np.ndarray) -> np.ndarray:
+    """The action of ``aim`` through the opening's centre for one observation: the parabola of
+    the observed distance and height, or, with air, the aim through air from the thrower the
+    observation describes."""
+    if aim.drag == 0.0:
+        return aim.action(float(observation[ObservationIndex.DISTANCE]), float(observation[ObservationIndex.HEIGHT]))
+    return aim.aim(thrower_of(observation, aim.opening.centre), aim.opening.centre)

@@ -1,10 +1,13 @@
-"""Agents: the oracle's capture rate, the confidence interval, PPO training smoke test, the
-shipped model, and the PPO settings' one source (agents/hyperparams/ppo.yml)."""
+"""Agents: the oracle's capture rate, the confidence interval, PPO training smoke test, what
+training says while it starts and runs, the shipped model, and the PPO settings' one source
+(agents/hyperparams/ppo.yml)."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -231,6 +234,14 @@ def test_training_progress_estimates_its_end_once_and_shows_the_latest_evaluatio
     assert progress.bar.total == 200_000
     progress.on_training_end()
     assert progress.bar.total == progress.bar.n == 150_000 and "150k/150k" in stream.getvalue()
+
+
+def test_a_training_worker_says_when_its_environment_is_ready(capsys: pytest.CaptureFixture) -> None:
+    from agents.training import ReadyLine
+
+    env = object()
+    assert ReadyLine(time.time() - 12.4)(env) is env
+    assert capsys.readouterr().err == f"environment worker {os.getpid()} ready after 12 s\n"
 
 
 def test_a_recurrent_ppo_model_loads_by_the_name_it_was_saved_with_and_acts_with_its_memory(tmp_path: Path) -> None:

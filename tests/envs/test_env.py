@@ -13,8 +13,9 @@ import pytest
 from gymnasium.utils.env_checker import check_env as gym_check_env
 
 import netgym  # noqa: F401  (registers NetCatch-v0)
-from agents.oracle import BallisticOracle
+from netgym.aim import BallisticAim
 from netgym.envs import NetCatchEnv
+from netgym.envs.observation import aim_at_centre
 from netgym.errors import ConfigError, UnstableTimeStepError
 
 
@@ -70,12 +71,12 @@ def test_reset_seed_makes_episodes_deterministic() -> None:
 @pytest.mark.parametrize("scene", ["basket", "goal"])
 def test_observations_stay_inside_their_space(scene: str) -> None:
     env = gym.make("NetCatch-v0", scene=scene).unwrapped
-    oracle = BallisticOracle(env.scene)
+    aim = BallisticAim(env.scene)
     rng = np.random.default_rng(1)
     obs, _ = env.reset(seed=3)
     for k in range(12):
         assert env.observation_space.contains(obs), obs
-        action = oracle.predict(obs)[0] if k % 2 else rng.uniform(-1, 1, 3).astype(np.float32)
+        action = aim_at_centre(aim, obs) if k % 2 else rng.uniform(-1, 1, 3).astype(np.float32)
         obs, reward, terminated, truncated, info = env.step(action)
         assert reward in (0.0, 1.0) and not truncated
         assert reward == float(info["captured"])
@@ -85,11 +86,11 @@ def test_observations_stay_inside_their_space(scene: str) -> None:
 
 def test_episode_holds_balls_per_episode_throws_and_keeps_caught_balls() -> None:
     env = gym.make("NetCatch-v0", balls_per_episode=3).unwrapped
-    oracle = BallisticOracle(env.scene)
+    aim = BallisticAim(env.scene)
     obs, _ = env.reset(seed=5)
     ends = []
     for _ in range(3):
-        obs, reward, terminated, truncated, info = env.step(oracle.predict(obs)[0])
+        obs, reward, terminated, truncated, info = env.step(aim_at_centre(aim, obs))
         ends.append(terminated)
     assert ends == [False, False, True]
     assert env.sim.n_balls == 3  # all caught, all still in the net
@@ -126,9 +127,9 @@ def test_bad_arguments_get_named_errors() -> None:
 
 def test_shaped_reward_is_bounded_and_rewards_near_misses_more() -> None:
     env = gym.make("NetCatch-v0", reward_mode="shaped").unwrapped
-    oracle = BallisticOracle(env.scene)
+    aim = BallisticAim(env.scene)
     obs, _ = env.reset(seed=2)
-    good = oracle.predict(obs)[0]
+    good = aim_at_centre(aim, obs)
     _, capture_reward, _, _, info = env.step(good)
     assert info["captured"] and capture_reward == 1.0
     rewards = []

@@ -20,7 +20,9 @@ from typing import Any
 import numpy as np
 import pytest
 
+from netgym.aim import BallisticAim
 from netgym.envs import NetCatchEnv
+from netgym.envs.observation import aim_at_centre
 
 GOLDEN = Path(__file__).parents[1] / "golden" / "episodes.json"
 WRITE = os.environ.get("NETGYM_WRITE_GOLDEN") == "1"
@@ -62,14 +64,12 @@ def _step_record(obs: np.ndarray, reward: float, terminated: bool, info: dict, e
 
 
 def _choose_actions(env: NetCatchEnv, obs: np.ndarray, rng: np.random.Generator, throw: int) -> np.ndarray:
-    """Recording only: the oracle's action, with noise on the second throw and a random third,
-    so that episodes load the net with caught balls and also miss."""
-    from agents.oracle import BallisticOracle
-
+    """Recording only: the ballistic aim's action through the opening's centre, with noise on
+    the second throw and a random third, so that episodes load the net with caught balls and
+    also miss."""
     if throw == BALLS - 1:
         return rng.uniform(-1, 1, 3).astype(np.float32)
-    oracle = BallisticOracle(env.scene)
-    action = oracle.predict(obs)[0]
+    action = aim_at_centre(BallisticAim(env.scene), obs)
     if throw == 1:
         action = np.clip(action + rng.normal(0.0, 0.05, 3), -1, 1).astype(np.float32)
     return action

@@ -10,8 +10,9 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from agents.oracle import BallisticOracle
+from netgym.aim import BallisticAim
 from netgym.envs import NetCatchEnv
+from netgym.envs.observation import aim_at_centre
 from netgym.errors import EpisodeEndedError, InvalidArgumentError, NetgymError, SimulationDivergedError
 from netgym.physics.simulator import Simulator
 
@@ -19,7 +20,7 @@ from netgym.physics.simulator import Simulator
 def test_stepping_an_ended_episode_raises_and_pays_nothing() -> None:
     env = NetCatchEnv(balls_per_episode=1)
     obs, _ = env.reset(seed=0)
-    _, _, terminated, _, _ = env.step(BallisticOracle(env.scene).predict(obs)[0])
+    _, _, terminated, _, _ = env.step(aim_at_centre(BallisticAim(env.scene), obs))
     assert terminated
     with pytest.raises(EpisodeEndedError, match="call reset"):
         env.step(np.zeros(3, dtype=np.float32))

@@ -10,10 +10,11 @@ import numpy as np
 import pytest
 
 import netgym  # noqa: F401
-from agents.oracle import BallisticOracle
+from netgym.aim import BallisticAim
 from netgym.config import load_scene
 from netgym.errors import InvalidArgumentError
 from netgym.envs import NetCatchEnv
+from netgym.envs.observation import aim_at_centre
 from netgym.physics.film import Film, FrameClock
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
@@ -50,8 +51,8 @@ def test_rgb_array_frame(scene: str) -> None:
 def test_rgb_array_list_holds_the_frames_of_a_throw() -> None:
     env = gym.make("NetCatch-v0", render_mode="rgb_array_list").unwrapped
     obs, _ = env.reset(seed=1)
-    oracle = BallisticOracle(env.scene)
-    _, _, _, _, info = env.step(oracle.predict(obs)[0])
+    aim = BallisticAim(env.scene)
+    _, _, _, _, info = env.step(aim_at_centre(aim, obs))
     frames = env.render()
     expected = info["sim_time"] * env.metadata["render_fps"]
     assert len(frames) >= 0.8 * expected
@@ -122,14 +123,14 @@ def test_human_mode_runs_headless() -> None:
 
 
 def _episode(render_mode: str | None, render_settling: bool = False, scene: str = "basket") -> tuple[list, list]:
-    """Steps of one seeded 4-ball episode (oracle, noisy oracle, random actions) and the frames of each."""
+    """Steps of one seeded 4-ball episode (aimed, noisy aimed, random actions) and the frames of each."""
     env = gym.make("NetCatch-v0", scene=scene, balls_per_episode=4, render_mode=render_mode,
                    render_settling=render_settling).unwrapped
     obs, _ = env.reset(seed=5)
-    oracle, rng = BallisticOracle(env.scene), np.random.default_rng(2)
+    aim, rng = BallisticAim(env.scene), np.random.default_rng(2)
     steps, frames = [], []
     for k in range(4):
-        action = oracle.predict(obs)[0] if k % 2 == 0 else rng.uniform(-1, 1, 3).astype(np.float32)
+        action = aim_at_centre(aim, obs) if k % 2 == 0 else rng.uniform(-1, 1, 3).astype(np.float32)
         obs, reward, _, _, info = env.step(action)
         s = env.sim.state
         steps.append((obs.tobytes(), reward, info["reason"], info["sim_time"], info["substeps"],
@@ -191,13 +192,13 @@ def test_recorded_episode_video_holds_every_throw_at_render_fps(tmp_path) -> Non
 
     env = RecordEpisodeVideo(gym.make("NetCatch-v0", render_mode="rgb_array_list"), tmp_path,
                              episode_trigger=lambda episode: episode == 1)
-    oracle = BallisticOracle(env.unwrapped.scene)
+    aim = BallisticAim(env.unwrapped.scene)
     simulated = []
     for episode in range(2):
         obs, _ = env.reset(seed=episode)
         done = False
         while not done:
-            obs, _, terminated, truncated, info = env.step(oracle.predict(obs)[0])
+            obs, _, terminated, truncated, info = env.step(aim_at_centre(aim, obs))
             if episode == 1:
                 simulated.append(info["sim_time"])
             done = terminated or truncated

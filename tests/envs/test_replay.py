@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 import netgym  # noqa: F401
-from agents.oracle import BallisticOracle
+from netgym.aim import BallisticAim
+from netgym.envs.observation import aim_at_centre
 from netgym.view.replay import Snapshot
 from netgym.view.video import write_video
 from netgym.wrappers import RecordEpisodeVideo
@@ -23,14 +24,14 @@ pytest.importorskip("plotly")
 
 
 def _steps(render_mode: str, throws: int = 2) -> list[list]:
-    """What ``render()`` hands out after the reset and after each oracle throw of a seeded episode."""
+    """What ``render()`` hands out after the reset and after each aimed throw of a seeded episode."""
     env = gym.make("NetCatch-v0", balls_per_episode=throws, render_mode=render_mode, render_settling=True).unwrapped
     obs, _ = env.reset(seed=3)
     start = env.sim.state.x.copy()
     out = [env.render()]
-    oracle = BallisticOracle(env.scene)
+    aim = BallisticAim(env.scene)
     for _ in range(throws):
-        obs, *_ = env.step(oracle.predict(obs)[0])
+        obs, *_ = env.step(aim_at_centre(aim, obs))
         out.append(env.render())
     out.append(start)
     env.close()
@@ -54,11 +55,11 @@ def test_snapshots_are_taken_at_the_frame_instants() -> None:
 def _page(tmp_path: Path) -> Path:
     env = RecordEpisodeVideo(gym.make("NetCatch-v0", balls_per_episode=2, render_mode="replay_list",
                                       render_settling=True), tmp_path, video_format="html")
-    oracle = BallisticOracle(env.unwrapped.scene)
+    aim = BallisticAim(env.unwrapped.scene)
     obs, _ = env.reset(seed=3)
     done = False
     while not done:
-        obs, _, terminated, truncated, _ = env.step(oracle.predict(obs)[0])
+        obs, _, terminated, truncated, _ = env.step(aim_at_centre(aim, obs))
         done = terminated or truncated
     env.close()
     assert [p.name for p in env.written] == ["netcatch-episode-0.html"]

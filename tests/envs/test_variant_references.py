@@ -1,5 +1,5 @@
 """The fast path of the variants against full simulation: each registered variant's first
-throw of seeded episodes (half the ballistic oracle's action, half random actions), the fast
+throw of seeded episodes (half the ballistic aim's action, half random actions), the fast
 path as the env runs it (a drawn net from its family, a new wind sharing the net) against the
 same throw simulated fully, from launch to the time limit, on a net settled from scratch.
 
@@ -24,7 +24,8 @@ import numpy as np
 import pytest
 
 import netgym  # noqa: F401  (registers the ids)
-from agents.oracle import BallisticOracle
+from netgym.aim import BallisticAim
+from netgym.envs.observation import aim_at_centre
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import ThrowResult, throw
 
@@ -50,12 +51,12 @@ def first_throws(env_id: str, count: int, seed: int = SEED) -> list[dict]:
     """The first throw of ``count`` seeded episodes of ``env_id``, through the env's fast path:
     the scene it ran in, the launch, and what the fast path decided."""
     env = gym.make(env_id, disable_env_checker=True)
-    oracle = BallisticOracle(env.unwrapped.scene)
+    aim = BallisticAim(env.unwrapped.scene)
     rng = np.random.default_rng(seed)
     throws = []
     for k in range(count):
         obs, _ = env.reset(seed=seed + k)
-        action = oracle.predict(obs)[0] if k % 2 else rng.uniform(-1.0, 1.0, 3).astype(np.float32)
+        action = aim_at_centre(aim, obs) if k % 2 else rng.uniform(-1.0, 1.0, 3).astype(np.float32)
         _, _, _, _, info = env.step(action)
         throws.append({"scene": env.unwrapped.sim.config, "position": info["launch_position"],
                        "velocity": info["launch_velocity"], "fast": bool(info["captured"])})

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from netgym.bench.accuracy.fast_path import compare, summarise
-from agents.bench.throws import sample_throws
+from netgym.bench.throws import sample_throws
 from netgym.config import ConfigError, load_scene
 from netgym.physics.kernels import air
 from netgym.physics.throw import flight

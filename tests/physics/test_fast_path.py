@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from netgym.bench.accuracy.fast_path import compare, summarise, throw_each
-from agents.bench.throws import Throw, sample_throws
+from netgym.bench.accuracy.fast_path import Throw, compare, summarise, throw_each
+from netgym.bench.throws import sample_throws
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import ThrowResult, throw
 

@@ -1,15 +1,12 @@
 """What long starts say while they last: worker processes' progress lines do not overwrite each
-other, and training's environment workers say when each is ready."""
+other (training's environment workers say when each is ready: tests/agents/test_agents.py)."""
 
 from __future__ import annotations
 
 import io
 import multiprocessing
 import os
-import time
 from types import SimpleNamespace
-
-import pytest
 
 from netgym.physics.progress import Progress
 
@@ -44,11 +41,3 @@ def test_progress_knows_a_multiprocessing_worker_from_the_main_process() -> None
     child.start()
     child.join(timeout=60)
     assert answer.get(timeout=10) is True
-
-
-def test_a_training_worker_says_when_its_environment_is_ready(capsys: pytest.CaptureFixture) -> None:
-    from agents.training import ReadyLine
-
-    env = object()
-    assert ReadyLine(time.time() - 12.4)(env) is env
-    assert capsys.readouterr().err == f"environment worker {os.getpid()} ready after 12 s\n"

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from netgym.bench.throws import sample_throws
 from netgym.launch import Thrower, action_to_launch, launch_velocity, sample_thrower
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
@@ -242,8 +243,6 @@ def test_the_fast_path_integrates_on_the_full_simulations_step_grid() -> None:
     path integrates it takes the full simulation's own steps: every integration request of these
     throws into the held goal that touch the net ends a whole number of steps after the
     launch, and each throw's outcome is the full simulation's."""
-    from agents.bench.throws import sample_throws
-
     sim = Simulator("goal", {"capture_rule": "held"})
     touching = 0
     for position, velocity in sample_throws("goal", 6, seed=3):

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from agents.bench.throws import sample_throws
+from netgym.bench.throws import sample_throws
 from netgym.physics.throw import approach
 from netgym.physics.throw import recipe
 from netgym.physics.plans import Integrate

@@ -7,9 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from agents.bench.throws import sample_throws
+from netgym.aim import BallisticAim
+from netgym.bench.throws import sample_throws
 from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
+from netgym.envs.observation import aim_at_centre
 from netgym.errors import ConfigError
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
@@ -130,16 +132,14 @@ def test_held_decides_once_the_ball_cannot_reach_the_mouth_before_the_time_limit
 
 
 def test_info_books_the_settling_and_the_throw() -> None:
-    from agents.oracle import BallisticOracle
-
     env = NetCatchEnv()
-    oracle = BallisticOracle(env.scene)
+    aim = BallisticAim(env.scene)
     obs, _ = env.reset(seed=3)
-    obs, _, _, _, first = env.step(oracle.predict(obs)[0])
+    obs, _, _, _, first = env.step(aim_at_centre(aim, obs))
     assert first["captured"] and first["settle_substeps"] > 0 and first["settle_time"] > 0.0  # settles for the next
     assert first["substeps"] == first["settle_substeps"] + first["throw_substeps"]
     assert not env.sim.awake  # the observation shows the caught ball at rest
-    obs, _, _, _, second = env.step(oracle.predict(obs)[0])
-    _, _, done, _, last = env.step(oracle.predict(obs)[0])
+    obs, _, _, _, second = env.step(aim_at_centre(aim, obs))
+    _, _, done, _, last = env.step(aim_at_centre(aim, obs))
     assert second["captured"] and second["settle_substeps"] > 0
     assert done and last["captured"] and last["settle_substeps"] == 0  # no pause after the episode's last throw

@@ -14,7 +14,7 @@ import pytest
 import netgym  # noqa: F401  (registers the ids)
 from netgym.bench.accuracy.contact_convergence import fitted_slope
 from netgym.errors import ConfigError, InvalidArgumentError
-from agents.bench.throws import sample_throws
+from netgym.bench.throws import sample_throws
 from netgym.bench.accuracy.fast_path import throw_each
 from netgym.bench.accuracy.model_agreement import COMPLIANT
 from netgym.physics.compliant import contacts as compliant_contacts
@@ -176,7 +176,7 @@ def test_the_env_takes_the_compliant_model_on_its_fast_path() -> None:
 
 @pytest.mark.slow
 def test_the_compliant_fast_path_agrees_with_its_full_simulation() -> None:
-    """Sampled basket throws (half random, half the noisy oracle's: rim and wall hits), each from
+    """Sampled basket throws (half random, half noisy aimed: rim and wall hits), each from
     the settled empty net, by the fast path and by full simulation, both compliant."""
     throws = sample_throws("basket", AGREEMENT_THROWS, seed=3)
     fast, full = (throw_each("basket", throws, 1, COMPLIANT, fast) for fast in (True, False))
