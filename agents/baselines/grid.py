@@ -2,7 +2,7 @@
 
 An algorithm runs on the ids its hyperparameter file (``agents/hyperparams/NAME.yml``, rl_zoo3's
 format) has settings for; the file's ``n_timesteps`` is ignored, every algorithm gets the id's
-:data:`BUDGETS` (or its own, :data:`LEARNER_BUDGETS`). Besides the learners, each id has three
+:data:`BUDGETS`. Besides the learners, each id has three
 reference runs, :data:`REFERENCES`: the random policy and the informed oracle (the 0 and 1 of the
 normalised score), and the blind oracle between them.
 
@@ -44,9 +44,6 @@ REFERENCES = ("random", "blind", "oracle")
 episode hides (its wind, its ball), and the informed oracle (told them); on pixels they act on the
 same episodes' vector observations. The gap from blind to informed is what learning within an
 episode can close."""
-LEARNER_BUDGETS: dict[tuple[str, str], int] = {("sac_drq", "NetCatchPixels-v0"): 40_960}
-"""Budgets of an algorithm on an id other than the id's: the learner from pixels alone, whose
-encoder is trained by its critics' loss alone, gets twice the id's steps."""
 BUDGETS: dict[str, int] = {
     "NetCatch-v0": 20_480,
     "NetCatchGoal-v0": 20_480,
@@ -57,8 +54,7 @@ BUDGETS: dict[str, int] = {
     "NetCatchRandomized-v0": 20_480,
     "NetCatchRandomized-v1": 30_720,
 }
-"""Environment steps (throws) of every learning run on the id (a learner's own budget:
-:data:`LEARNER_BUDGETS`). Multiples of 512, so that PPO's rollouts (8 envs x 64 steps; x 128 on
+"""Environment steps (throws) of every learning run on the id. Multiples of 512, so that PPO's rollouts (8 envs x 64 steps; x 128 on
 pixels) end on the budget. The ids with feedback across 5 throws (NetCatchWindy-v0,
 NetCatchRandomized-v1) get half as many again; NetCatchLongEpisode-v0 asks the same aim as
 NetCatch-v0 into a fuller net and gets its budget; the learning curves on docs/baselines.md show
@@ -100,11 +96,11 @@ CPU_MS_A_STEP: dict[tuple[str, str], float] = {
     ("td3", "NetCatchNoisy-v0"): 8.4, ("td3", "NetCatchRandomized-v1"): 8.4, ("td3", "NetCatchWindy-v0"): 14.0,
     ("tqc", "NetCatch-v0"): 18.2, ("tqc", "NetCatchGoal-v0"): 7.7, ("tqc", "NetCatchLongEpisode-v0"): 17.2,
     ("tqc", "NetCatchNoisy-v0"): 19.3, ("tqc", "NetCatchRandomized-v1"): 13.2, ("tqc", "NetCatchWindy-v0"): 19.0,
-    ("sac_sym", "NetCatchWindy-v0"): 9.8, ("sac_drq", "NetCatchPixels-v0"): 90.0,
+    ("sac_sym", "NetCatchWindy-v0"): 9.8, ("sac_drq", "NetCatchPixels-v0"): 68.0,
 }
 """CPU milliseconds a training step (curve evaluations included) of each learner on each id: the
 median over the seeds of the table of 2026-12-07 (docs/results/baselines at 3b6cb38, runs on
-2-core AMD EPYC machines); sac_sym as sac_asym (the same networks), sac_drq from its first run.
+2-core AMD EPYC machines); sac_sym as sac_asym (the same networks), sac_drq from its tuning run.
 For the runner's estimates only."""
 CPU_MS_AN_EPISODE: dict[str, float] = {
     "NetCatch-v0": 15.0, "NetCatchGoal-v0": 7.0, "NetCatchLongEpisode-v0": 85.0, "NetCatchNoisy-v0": 32.0,
@@ -148,7 +144,7 @@ class Run:
     def command(self, out: Path) -> list[str]:
         """The arguments of ``python`` that run this run alone (if its result file is missing),
         from the repository's root: ``out`` relative to it."""
-        longer = self.budget not in (0, table_budget(self.env_id, self.quick, self.algorithm))
+        longer = self.budget not in (0, table_budget(self.env_id, self.quick))
         return ["scripts/baselines.py", "--out", os.path.relpath(out.resolve(), ROOT), "--algos", self.algorithm, "--ids", self.env_id,
                 "--seeds", str(self.seed), *(["--quick"] if self.quick else []),
                 *(["--budget", str(self.budget)] if longer else [])]
@@ -161,10 +157,10 @@ class Run:
         return (self.budget * step + self.final_episodes * CPU_MS_AN_EPISODE[self.env_id]) / 1000.0
 
 
-def table_budget(env_id: str, quick: bool = False, algorithm: str = "") -> int:
+def table_budget(env_id: str, quick: bool = False) -> int:
     """The learners' steps on ``env_id`` under the table's protocol (its :data:`BUDGETS`, or
-    ``algorithm``'s :data:`LEARNER_BUDGETS`; :data:`QUICK_BUDGET` in quick mode)."""
-    return QUICK_BUDGET if quick else LEARNER_BUDGETS.get((algorithm, env_id), BUDGETS[env_id])
+    :data:`QUICK_BUDGET` in quick mode)."""
+    return QUICK_BUDGET if quick else BUDGETS[env_id]
 
 
 def table_seeds(algorithm: str, env_id: str) -> tuple[int, ...]:
@@ -194,7 +190,7 @@ def grid(algorithms: list[str] | None = None, ids: list[str] | None = None, seed
     runs = [Run(reference, env_id, 0, 0, **episodes) for env_id in ids for reference in REFERENCES]
     for algorithm in algorithms:
         for env_id in (i for i in ids if i in env_ids(yml(algorithm))):
-            steps = budget or table_budget(env_id, quick, algorithm)
+            steps = budget or table_budget(env_id, quick)
             chosen = seeds if seeds is not None else (QUICK_SEEDS if quick else table_seeds(algorithm, env_id))
             runs += [Run(algorithm, env_id, seed, steps, **episodes) for seed in chosen]
     return runs

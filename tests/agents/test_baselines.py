@@ -51,7 +51,7 @@ def test_grid_gives_every_algorithm_its_ids_budget_and_each_id_its_references() 
     runs = grid()
     learners = [run for run in runs if run.algorithm not in REFERENCES]
     assert {run.algorithm for run in learners} == set(ALGORITHMS) - set(LEFT_OUT)
-    assert all(run.budget == table_budget(run.env_id, algorithm=run.algorithm) and run.env_id in env_ids(yml(run.algorithm))
+    assert all(run.budget == table_budget(run.env_id) and run.env_id in env_ids(yml(run.algorithm))
                for run in learners)
     ids = {run.env_id for run in runs}
     assert {(run.algorithm, run.env_id) for run in runs if run.algorithm in REFERENCES} == \
