@@ -4,9 +4,12 @@ of environment steps and evaluated on the same 100 held-out episodes (determinis
 Each run's result is written to ``OUT/ALGORITHM/ENV_ID/seed_K.json`` the moment it ends (its
 command, versions, seed, budget, wall-clock, learning curve and final evaluation); a runner
 stopped at any point and started again runs only the missing runs. Runs go to local worker
-processes (one core each), or with ``--address`` to a Ray cluster as Ray tasks. At the end
-``OUT/report.md`` and ``OUT/curves.png`` are written from the result files. Needs the
-``baselines`` extra (sb3-contrib): ``pip install -e ".[train,baselines]"``.
+processes (one core each), or with ``--address`` to a Ray cluster as Ray tasks. At the end the
+report is written from the result files (:func:`agents.baselines.report.write_report`):
+``OUT/report.md`` (every table), ``OUT/stats.json`` (its statistics, which the docs' quoted tables
+read), ``OUT/curves-GROUP.png`` (the learning curves of the vector, feedback and pixel tasks) and
+``OUT/profiles.png`` (the performance profiles). Needs the ``baselines`` extra (sb3-contrib):
+``pip install -e ".[train,baselines]"``.
 
 Usage::
 
@@ -15,7 +18,7 @@ Usage::
     python scripts/baselines.py --out runs/b --address auto           # on a running Ray cluster
     python scripts/baselines.py --quick --out /tmp/baselines          # about a minute, for CI
     python scripts/baselines.py --out runs/long --algos sac_asym --ids NetCatchWindy-v0 --budget 184320
-    python scripts/baselines.py --report --out docs/results/baselines # the docs' report and figure
+    python scripts/baselines.py --report --out docs/results/baselines # the docs' report, statistics, figures
     python scripts/baselines.py --plan --out docs/results/baselines   # what is left, in CPU hours
 """
 
@@ -44,7 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--plan", action="store_true",
                         help="run nothing: print the runs left under --out and their estimated CPU hours")
     parser.add_argument("--report", action="store_true",
-                        help="run nothing: only write the report and figure from the result files under --out")
+                        help="run nothing: only write the report, statistics and figures of the results under --out")
     return parser
 
 

@@ -6,7 +6,12 @@ episodes, aggregated with interquartile means and stratified bootstrap intervals
 - :mod:`~agents.baselines.runs`: one run, trained and evaluated, as a JSON-ready record;
 - :mod:`~agents.baselines.runner`: the runs not yet done, in parallel processes or as Ray tasks;
 - :mod:`~agents.baselines.stats`: IQM, bootstrap intervals, normalisation, performance profiles;
-- :mod:`~agents.baselines.report`: the table and figures from the result files.
+- :mod:`~agents.baselines.cells`: the result files as (algorithm, id) cells: learners, tasks, ranking,
+  common task sets, captures by throw;
+- :mod:`~agents.baselines.analysis`: the rliable statistics over the cells, stored as ``stats.json``;
+- :mod:`~agents.baselines.tables`: every markdown table of the report and the docs, with its caption;
+- :mod:`~agents.baselines.figures`: the learning curves and performance profiles;
+- :mod:`~agents.baselines.report`: ``report.md``, ``stats.json`` and the figures from the result files.
 
 ``python scripts/baselines.py --out runs/baselines`` runs it all.
 """

@@ -28,7 +28,9 @@ import netgym  # noqa: E402
 from netgym.envs import NetCatchEnv  # noqa: E402
 from card_sections import action_section, observation_section, space_text, starting_state_section  # noqa: E402
 from griffe_roles import plain_roles  # noqa: E402
-from quotes import BASELINES, baselines, environments  # noqa: E402
+from quotes import BASELINES, environments  # noqa: E402
+from agents.baselines.analysis import load_cells  # noqa: E402
+from agents.baselines.tables import best_line  # noqa: E402
 
 SECTIONS = ("Description", "Action Space", "Observation Space", "Rewards", "Starting State", "Episode End",
             "Arguments", "Version History")
@@ -103,7 +105,7 @@ def env_card(env_id: str) -> str:
         f"| Observation Space | `{space_text(env.observation_space)}`: {entry.observation} |",
         f"| Balls per episode | {balls} |",
         f"| Reward threshold | {spec.reward_threshold} |",
-        f"| Best baseline | {baselines.best_line(baselines.load_cells(BASELINES), env_id)} "
+        f"| Best baseline | {best_line(load_cells(BASELINES), env_id)} "
         "([Baselines](../baselines.md)) |",
         f"| Registered with | {_kwargs_text(entry.kwargs, short=True)} |",
         f"| Entry point | `{spec.entry_point}` |", "",

@@ -25,7 +25,8 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 import netgym  # noqa: E402
-from agents.baselines import report as baselines  # noqa: E402
+from agents.baselines import tables as baselines  # noqa: E402
+from agents.baselines.analysis import load_cells  # noqa: E402
 from agents.bench.report import contact_convergence, model_agreement_quote  # noqa: E402
 from agents.policies import SHIPPED_BASELINES  # noqa: E402
 from netgym.bench.speed import roofline, speed_table  # noqa: E402
@@ -288,19 +289,19 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "compliant-convergence": lambda: contact_convergence("compliant"),
     "model-agreement": model_agreement_quote,
     "variants-summary": variants_summary,
-    "baselines-matrix": lambda: baselines.matrix(baselines.load_cells(BASELINES)),
-    "baselines-improvement": lambda: baselines.improvement(baselines.load_cells(BASELINES)),
-    "baselines-aggregates": lambda: baselines.aggregates(baselines.load_cells(BASELINES)),
-    "baselines-table": lambda: baselines.table(baselines.load_cells(BASELINES)),
-    "baselines-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES)),
+    "baselines-matrix": lambda: baselines.matrix(load_cells(BASELINES)),
+    "baselines-improvement": lambda: baselines.improvement(load_cells(BASELINES)),
+    "baselines-aggregates": lambda: baselines.aggregates(load_cells(BASELINES)),
+    "baselines-table": lambda: baselines.table(load_cells(BASELINES)),
+    "baselines-protocol": lambda: baselines.protocol(load_cells(BASELINES)),
     "baselines-shipped": lambda: baselines.shipped(RESULTS, SHIPPED_BASELINES),
-    "baselines-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES), "NetCatchWindy-v0"),
-    "baselines-by-throw-randomized": lambda: baselines.by_throw(baselines.load_cells(BASELINES),
+    "baselines-by-throw-windy": lambda: baselines.by_throw(load_cells(BASELINES), "NetCatchWindy-v0"),
+    "baselines-by-throw-randomized": lambda: baselines.by_throw(load_cells(BASELINES),
                                                                 "NetCatchRandomized-v1"),
-    "baselines-long-table": lambda: baselines.table(baselines.load_cells(BASELINES_LONG)),
-    "baselines-long-by-throw-windy": lambda: baselines.by_throw(baselines.load_cells(BASELINES_LONG),
+    "baselines-long-table": lambda: baselines.table(load_cells(BASELINES_LONG)),
+    "baselines-long-by-throw-windy": lambda: baselines.by_throw(load_cells(BASELINES_LONG),
                                                                 "NetCatchWindy-v0"),
-    "baselines-long-protocol": lambda: baselines.protocol(baselines.load_cells(BASELINES_LONG)),
+    "baselines-long-protocol": lambda: baselines.protocol(load_cells(BASELINES_LONG)),
     "learning-curve": lambda: learning_curve("ppo_curve"),
     "learning-curve-windy": lambda: learning_curve("ppo_windy_curve", (0, 8192, 16384, 24576, 32768, 40960)),
     "learning-curve-windy-stack5": lambda: learning_curve("ppo_windy_stack5_curve",

@@ -17,9 +17,9 @@ from pathlib import Path
 import pytest
 
 from agents.baselines import grid as grid_module
-from agents.baselines.report import nowrap
 from agents.baselines.grid import ALGORITHMS, BUDGETS, LEFT_OUT, REFERENCES, TRAIN_SEED_STRIDE, grid, table_budget
 from agents.baselines.runner import done, missing
+from agents.baselines.tables import nowrap
 from agents.hyperparams import action_noise, algorithm_kwargs, env_ids, load, yml
 from agents.policies import policy_in_env, saved_algorithm
 from netgym.bench.results import read_results, write_results

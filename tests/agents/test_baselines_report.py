@@ -1,6 +1,7 @@
-"""The baselines' statistics and report (agents/baselines/stats.py, report.py) against known
-answers: result files written with known outcomes, read back as the report reads them. The
-bootstraps run on few resamples here (``REPS``); the report itself takes rliable's defaults."""
+"""The baselines' statistics and report (agents/baselines/: stats.py, cells.py, analysis.py,
+tables.py, report.py) against known answers: result files written with known outcomes, read back
+as the report reads them. The bootstraps run on few resamples here (``REPS``); the report itself
+takes rliable's defaults."""
 
 from __future__ import annotations
 
@@ -12,7 +13,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from agents.baselines import report, stats
+from agents.baselines import analysis, report, stats, tables
+from agents.baselines.cells import Cells, best_learners, digest, learners, ranking, set_scores, task_sets, throw_rates
 from agents.baselines.grid import REFERENCES
 from agents.evaluation import wilson_interval
 from netgym.bench.results import write_results
@@ -94,15 +96,15 @@ def table(tmp_path: Path) -> Path:
     return tmp_path
 
 
-def _statistics(out: Path) -> tuple[report.Cells, report.Stats]:
-    cells = report.load_cells(out)
-    return cells, report.statistics(cells, REPS)
+def _statistics(out: Path) -> tuple[Cells, analysis.Stats]:
+    cells = analysis.load_cells(out)
+    return cells, analysis.statistics(cells, REPS)
 
 
-def _blocks(cells: report.Cells, found: report.Stats) -> list[str]:
-    return [report.matrix(cells, found), report.improvement(cells, found), report.aggregates(cells, found),
-            report.table(cells, found), report.protocol(cells, found),
-            *(report.by_throw(cells, env_id, found) for env_id in (WINDY, RANDOMIZED))]
+def _blocks(cells: Cells, found: analysis.Stats) -> list[str]:
+    return [tables.matrix(cells, found), tables.improvement(cells, found), tables.aggregates(cells, found),
+            tables.table(cells, found), tables.protocol(cells, found),
+            *(tables.by_throw(cells, env_id, found) for env_id in (WINDY, RANDOMIZED))]
 
 
 def _row(text: str, label: str) -> list[str]:
@@ -121,9 +123,9 @@ def test_a_references_interval_is_wilsons_over_its_throws(table: Path) -> None:
     low, high = wilson_interval(250, 500)
     expected = f"50.0 [{100 * low:.1f}, {100 * high:.1f}]"
     assert high - low > 0.08
-    references = report.matrix(cells, found).split("References")[1]
+    references = tables.matrix(cells, found).split("References")[1]
     assert _row(references, WINDY)[2] == expected
-    assert f"{WINDY}</span> | *blind* (1 run) | {expected} |" in report.table(cells, found)
+    assert f"{WINDY}</span> | *blind* (1 run) | {expected} |" in tables.table(cells, found)
 
 
 def test_the_aggregate_tables_have_every_learner_in_each_common_task_set_it_ran(table: Path) -> None:
@@ -131,14 +133,13 @@ def test_the_aggregate_tables_have_every_learner_in_each_common_task_set_it_ran(
     (sac_asym's vector part) and pixels (sac_asym, sac_drq); a learner is in a set's column when
     it ran every task of the set, and every learner has a row."""
     cells, found = _statistics(table)
-    assert report.task_sets(cells) == [("NetCatch-v0", "NetCatchGoal-v0", WINDY), (WINDY, RANDOMIZED), (WINDY,),
-                                       (PIXELS,)]
-    text = report.aggregates(cells, found)
+    assert task_sets(cells) == [("NetCatch-v0", "NetCatchGoal-v0", WINDY), (WINDY, RANDOMIZED), (WINDY,),
+                                (PIXELS,)]
+    text = tables.aggregates(cells, found)
     iqm, gap = text.split("Optimality gap")
     for part in (iqm, gap):
-        assert [_row(part, algo)[0] for algo in report.learners(cells)] == ["ppo", "sac", "rppo", "sac_asym",
-                                                                            "sac_drq"]
-    members = {algo: [cell != "-" for cell in _row(iqm, algo)[1:]] for algo in report.learners(cells)}
+        assert [_row(part, algo)[0] for algo in learners(cells)] == ["ppo", "sac", "rppo", "sac_asym", "sac_drq"]
+    members = {algo: [cell != "-" for cell in _row(iqm, algo)[1:]] for algo in learners(cells)}
     assert members["ppo"] == members["sac"] == [True, False, True]
     assert members["rppo"] == [False, True, True] and members["sac_asym"] == [False, False, True]
     assert "sac_drq" in gap.split("|---|")[-1] and _row(gap.split(PIXELS)[-1], "sac_drq")[1] != "-"
@@ -150,9 +151,9 @@ def test_an_aggregate_takes_the_seeds_every_task_of_its_set_has(table: Path) -> 
     cells, found = _statistics(table)
     seeds = {tuple(s["tasks"]): {algo: m["seeds"] for algo, m in s["learners"].items()} for s in found["sets"]}
     assert seeds[WINDY,]["sac_asym"] == list(range(10)) and seeds[WINDY,]["ppo"] == list(range(5))
-    scores = report.set_scores(cells, ("NetCatch-v0", "NetCatchGoal-v0", WINDY))
+    scores = set_scores(cells, ("NetCatch-v0", "NetCatchGoal-v0", WINDY))
     assert {algo: matrix.shape for algo, (_, matrix) in scores.items()} == {"ppo": (5, 3), "sac": (5, 3)}
-    assert "0-9 of sac_asym" in report.aggregates(cells, found)
+    assert "0-9 of sac_asym" in tables.aggregates(cells, found)
 
 
 def test_a_clear_leader_is_bold_and_a_coin_flip_is_not(table: Path) -> None:
@@ -160,11 +161,12 @@ def test_a_clear_leader_is_bold_and_a_coin_flip_is_not(table: Path) -> None:
     On NetCatchGoal-v0 ppo's seeds interleave sac's (P = 15/25 = 0.6, its interval holds 0.5):
     neither is bold, and the probability table says why."""
     cells, found = _statistics(table)
-    assert report.clear_winners(found)["NetCatch-v0"] == "sac" and "NetCatchGoal-v0" not in report.clear_winners(found)
-    matrix = report.matrix(cells, found)
+    winners = analysis.clear_winners(found)
+    assert winners["NetCatch-v0"] == "sac" and "NetCatchGoal-v0" not in winners
+    matrix = tables.matrix(cells, found)
     assert _row(matrix, "NetCatch-v0</span>")[2].startswith("**97.0 [")
     assert not any("**" in cell for cell in _row(matrix, "NetCatchGoal-v0"))
-    improvement = report.improvement(cells, found)
+    improvement = tables.improvement(cells, found)
     assert _row(improvement, "NetCatch-v0</span>")[1:] == ["sac", "ppo", "**1.00 [1.00, 1.00]**"]
     goal = _row(improvement, "NetCatchGoal-v0")
     assert goal[1:3] == ["ppo", "sac"] and goal[3].startswith("0.60 [") and float(goal[3][6:10]) <= 0.5
@@ -202,14 +204,14 @@ def test_rates_by_throw_are_iqms_over_the_runs_that_counted_them(tmp_path: Path)
     _write(tmp_path, old)
     _references(tmp_path, WINDY, throws=5, episodes=10)
     cells, found = _statistics(tmp_path)
-    text = report.by_throw(cells, WINDY, found)
+    text = tables.by_throw(cells, WINDY, found)
     assert _row(text, "rate in %")[1] == "sac (n=4)"
     first = _row(text, "throw 1")[1]
     assert first.startswith("65.0 [") and float(first[6:10]) < 65.0 < float(first.split(", ")[1][:-1])
     assert _row(text, "throw 2")[1] == "100.0 [100.0, 100.0]" and _row(text, "throws 2-5")[1].startswith("100.0")
     low, high = wilson_interval(5, 10)  # random: 25 catches of 50, throw index by throw index: 10, 10, 5, 0, 0
     assert _row(text.split("*random*")[1], "throw 3")[1] == f"50.0 [{100 * low:.1f}, {100 * high:.1f}]"
-    assert "No run on NetCatch-v0" in report.by_throw(cells, "NetCatch-v0", found)
+    assert "No run on NetCatch-v0" in tables.by_throw(cells, "NetCatch-v0", found)
 
 
 def test_every_id_in_a_table_never_breaks_at_its_hyphens(table: Path) -> None:
@@ -223,15 +225,15 @@ def test_every_id_in_a_table_never_breaks_at_its_hyphens(table: Path) -> None:
 
 def test_protocol_names_its_commit_or_warns_of_several_and_of_changed_trees(table: Path) -> None:
     cells, found = _statistics(table)
-    text = report.protocol(cells, found)
+    text = tables.protocol(cells, found)
     assert f"Commit: `{'a' * 10}` (every run)." in text and "Warning" not in text
     learning = sum(len(records) for (algo, _), records in cells.items() if algo not in REFERENCES)
     assert f"seeded 1000 k + i (a resumed run's next workers the next ones of its block of 1000) in {learning} of " \
            f"the {learning} learner runs that record them." in text
     assert "sac_drq" not in _row(text, PIXELS)[1]
     _write(table, _record("sac_drq", PIXELS, 5, _outcomes(90, 100, 1), commit="b" * 40, tree_clean=False))
-    cells = report.load_cells(table)
-    text = report.protocol(cells, report.statistics(cells, REPS))
+    cells = analysis.load_cells(table)
+    text = tables.protocol(cells, analysis.statistics(cells, REPS))
     assert "**Warning:** the runs come from 2 commits, not one" in text
     assert "**Warning:** 1 runs ran on a tree with uncommitted changes" in text
     assert _row(text, PIXELS)[2] == "0-4; sac_drq: 0-5"
@@ -239,7 +241,7 @@ def test_protocol_names_its_commit_or_warns_of_several_and_of_changed_trees(tabl
 
 def test_a_shipped_models_rate_comes_with_its_wilson_interval(tmp_path: Path) -> None:
     _write(tmp_path / "baselines", _record("rppo", RANDOMIZED, 0, _outcomes(400, 100, 5)))
-    text = report.shipped(tmp_path, {"rppo_randomized_v1.zip": f"baselines/rppo/{RANDOMIZED}/seed_0"})
+    text = tables.shipped(tmp_path, {"rppo_randomized_v1.zip": f"baselines/rppo/{RANDOMIZED}/seed_0"})
     low, high = wilson_interval(400, 500)
     assert _row(text, "rppo_randomized_v1.zip")[2:] == [f"80.0 [{100 * low:.1f}, {100 * high:.1f}]", "100.0", "75.0"]
 
@@ -252,7 +254,7 @@ def test_the_report_writes_its_tables_statistics_and_figures_at_page_width(table
         assert f"]({name})" in text
         width, height = Image.open(table / name).size
         assert 700 <= width <= 800 and height < 900
-    assert json.loads((table / report.STATS_FILE).read_text())["digest"] == report.digest(report.load_cells(table))
+    assert json.loads((table / analysis.STATS_FILE).read_text())["digest"] == digest(analysis.load_cells(table))
     assert "## Probability of improvement" in text and "Optimality gap" in text
 
 
@@ -260,17 +262,17 @@ def test_stored_statistics_serve_only_the_records_they_were_computed_from(table:
     """The statistics written beside the results are read back instead of computed while the
     records are those; one record changed, they are computed again."""
     report.write_report(table, reps=30)
-    stored = json.loads((table / report.STATS_FILE).read_text())
-    report._STORED.clear()
+    stored = json.loads((table / analysis.STATS_FILE).read_text())
+    analysis._STORED.clear()
 
     def refuse(*args, **kwargs):
         raise AssertionError("computed again")
 
-    monkeypatch.setattr(report, "iqm_intervals", refuse)
-    assert report.statistics(report.load_cells(table), 30) == stored
+    monkeypatch.setattr(analysis, "iqm_intervals", refuse)
+    assert analysis.statistics(analysis.load_cells(table), 30) == stored
     _write(table, _record("sac", "NetCatch-v0", 0, _outcomes(90, 100, 1)))
     with pytest.raises(AssertionError, match="computed again"):
-        report.statistics(report.load_cells(table), 30)
+        analysis.statistics(analysis.load_cells(table), 30)
 
 
 def _runs(algorithm: str, env_id: str, rates: list[float]) -> list[dict]:
@@ -280,20 +282,20 @@ def _runs(algorithm: str, env_id: str, rates: list[float]) -> list[dict]:
 
 
 def test_the_best_learner_has_the_highest_iqm_and_ties_go_to_more_seeds_then_the_mean(monkeypatch) -> None:
-    monkeypatch.setattr(report, "DEFAULT_REPS", REPS)
+    monkeypatch.setattr(analysis, "DEFAULT_REPS", REPS)
     cells = {("ppo", "NetCatch-v0"): _runs("ppo", "NetCatch-v0", [0.1, 0.9, 0.9, 0.9, 0.9]),
              ("sac", "NetCatch-v0"): _runs("sac", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95]),
              ("td3", "NetCatch-v0"): _runs("td3", "NetCatch-v0", [0.9, 0.9, 0.9]),
              ("ppo", "NetCatchGoal-v0"): _runs("ppo", "NetCatchGoal-v0", [0.5, 0.6, 0.7, 0.8]),
              ("random", "NetCatch-v0"): _runs("random", "NetCatch-v0", [1.0])}
-    assert report.best_learners(cells) == {"NetCatch-v0": ["sac"], "NetCatchGoal-v0": ["ppo"]}  # not the reference
+    assert best_learners(cells) == {"NetCatch-v0": ["sac"], "NetCatchGoal-v0": ["ppo"]}  # not the reference
     tied = {**cells, ("tqc", "NetCatch-v0"): _runs("tqc", "NetCatch-v0", [0.9, 0.9, 0.9, 0.9, 0.95])}
-    assert report.best_learners(tied)["NetCatch-v0"] == ["sac", "tqc"]
-    assert report.ranking(tied, "NetCatch-v0") == ["sac", "tqc", "ppo", "td3"]
-    assert report.best_line(tied, "NetCatch-v0").startswith("sac, tqc (tied): 90.0% [90.0, ")
-    assert report.best_line(cells, "NetCatchGoal-v0").startswith("ppo: 65.0% [") and "over 4 seeds at 512" in \
-        report.best_line(cells, "NetCatchGoal-v0")
-    assert report.best_line(cells, "NetCatchPixels-v0") == "none trained yet"
+    assert best_learners(tied)["NetCatch-v0"] == ["sac", "tqc"]
+    assert ranking(tied, "NetCatch-v0") == ["sac", "tqc", "ppo", "td3"]
+    assert tables.best_line(tied, "NetCatch-v0").startswith("sac, tqc (tied): 90.0% [90.0, ")
+    assert tables.best_line(cells, "NetCatchGoal-v0").startswith("ppo: 65.0% [") and "over 4 seeds at 512" in \
+        tables.best_line(cells, "NetCatchGoal-v0")
+    assert tables.best_line(cells, "NetCatchPixels-v0") == "none trained yet"
 
 
 def test_the_baselines_pages_words_hold_in_the_committed_results() -> None:
@@ -306,10 +308,10 @@ def test_the_baselines_pages_words_hold_in_the_committed_results() -> None:
     text = " ".join((root / "docs" / "baselines.md").read_text().split())
     assert "`sac_asym` already has the highest IQM of the windy task's throws 2-5" in text
     assert "trained longer" in text
-    table, long = report.load_cells(results / "baselines"), report.load_cells(results / "baselines_long")
+    table, long = analysis.load_cells(results / "baselines"), analysis.load_cells(results / "baselines_long")
     later = {algo: metrics.aggregate_iqm([rates[-1] for r in table[algo, WINDY]
-                                          if (rates := report._throw_rates(r["final"])) is not None])
-             for algo in report.learners(table) if (algo, WINDY) in table
-             and any(report._throw_rates(r["final"]) is not None for r in table[algo, WINDY])}
+                                          if (rates := throw_rates(r["final"])) is not None])
+             for algo in learners(table) if (algo, WINDY) in table
+             and any(throw_rates(r["final"]) is not None for r in table[algo, WINDY])}
     assert max(later, key=later.get) == "sac_asym" and len(later) > 1
     assert long["sac_asym", WINDY][0]["budget"] > table["sac_asym", WINDY][0]["budget"]
