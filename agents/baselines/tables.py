@@ -23,8 +23,9 @@ import numpy as np
 from agents.baselines.analysis import Stats, clear_winners, is_clear, statistics
 from agents.baselines.cells import (Cells, best_learners, bounds, cell_key, learners, set_name, table_ids,
                                     throw_rates, throw_tallies)
-from agents.baselines.grid import REFERENCES, TRAIN_SEED_STRIDE
+from agents.baselines.grid import ALGORITHMS, LEFT_OUT, REFERENCES, TABLE_IDS, TRAIN_SEED_STRIDE
 from agents.baselines.stats import PROFILE_REPS, Estimate, normalise, wilson
+from agents.hyperparams import TUNING, env_ids, yml
 from netgym.bench.results import read_results
 
 COLUMNS_A_TABLE = 3
@@ -339,3 +340,14 @@ def protocol(cells: Cells, stats: Stats | None = None) -> str:
         f"Statistics: rliable {stats['rliable']}, stratified bootstrap 95% percentile intervals from "
         f"{stats['reps']:,} resamples (probabilities of improvement: {stats['improvement_reps']:,}; the figures' "
         f"bands: {min(stats['reps'], PROFILE_REPS):,}), numpy's global generator seeded {stats['seed']} for each.")])
+
+
+def tuning() -> str:
+    """The markdown table of where each algorithm of the grid was tuned and the table's ids it runs
+    on (:data:`agents.hyperparams.TUNING`, the yml files), with the reason of any the table leaves out."""
+    lines = ["| learner | settings | ids | tuned |", "|---|---|---|---|"]
+    for algorithm in ALGORITHMS:
+        ids = ", ".join(nowrap(env_id) for env_id in env_ids(yml(algorithm)) if env_id in TABLE_IDS)
+        left_out = f"; left out of the table: {LEFT_OUT[algorithm]}" if algorithm in LEFT_OUT else ""
+        lines.append(f"| {algorithm} | `agents/hyperparams/{algorithm}.yml` | {ids} | {TUNING[algorithm]}{left_out} |")
+    return "\n".join(lines)

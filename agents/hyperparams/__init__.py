@@ -100,6 +100,22 @@ def env_wrapper(settings: dict[str, Any]) -> type[HiddenState] | None:
     return TRAINING_WRAPPERS[name]
 
 
+TUNING: dict[str, str] = {
+    "ppo": "on NetCatch-v0, then given to every vector id alike (docs/AGENTS.md)",
+    "sac": "on NetCatch-v0, seeds 0-3, then given to every vector id alike",
+    "td3": "on NetCatch-v0, seeds 0-3, then given to every vector id alike",
+    "tqc": "none: sac.yml's settings, checked on NetCatch-v0 seeds 0-3; every vector id alike",
+    "rppo": "none: ppo.yml's settings with an LSTM of 64 units",
+    "ppo_cnn": "on NetCatchPixels-v0, seed 0",
+    "sac_asym": "on each of its ids itself, seed 0: the state in the critics and a CNN actor on pixels; "
+                "on NetCatchWindy-v0 the wind in the critics, 5 stacked observations, 256-unit critics, "
+                "a falling target entropy and a 200k buffer",
+    "sac_sym": "none: sac_asym's NetCatchWindy-v0 settings, its critics reading what the actor reads",
+    "sac_drq": "on NetCatchPixels-v0, one run of seed 99 (not a table seed)",
+}
+"""Where each algorithm's settings were tuned, as its yml's header records it (the baselines page
+shows this table: tuning on a task is an advantage there)."""
+
 SETTINGS = load()
 PPO_PARAMS: dict[str, Any] = algorithm_kwargs(SETTINGS)
 POLICY: str = SETTINGS["policy"]

@@ -294,6 +294,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "baselines-aggregates": lambda: baselines.aggregates(load_cells(BASELINES)),
     "baselines-table": lambda: baselines.table(load_cells(BASELINES)),
     "baselines-protocol": lambda: baselines.protocol(load_cells(BASELINES)),
+    "baselines-tuning": baselines.tuning,
     "baselines-shipped": lambda: baselines.shipped(RESULTS, SHIPPED_BASELINES),
     "baselines-by-throw-windy": lambda: baselines.by_throw(load_cells(BASELINES), "NetCatchWindy-v0"),
     "baselines-by-throw-randomized": lambda: baselines.by_throw(load_cells(BASELINES),

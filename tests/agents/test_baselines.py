@@ -324,3 +324,14 @@ def test_every_shipped_baseline_model_catches_more_than_random_actions() -> None
         model = evaluate(policy, episodes=5, seed=60_000, env_id=env_id)
         random = evaluate(load_policy("random"), episodes=5, seed=60_000, env_id=env_id)
         assert model.rate > random.rate + 0.3, (name, str(model), str(random))
+
+
+def test_every_algorithm_says_where_it_was_tuned_and_the_page_shows_it() -> None:
+    from agents.baselines.tables import tuning
+    from agents.hyperparams import TUNING
+
+    assert set(TUNING) == set(ALGORITHMS) and all(TUNING.values())
+    page = (ROOT / "docs" / "baselines.md").read_text()
+    assert tuning() in page
+    for algorithm in ALGORITHMS:
+        assert f"| {algorithm} | `agents/hyperparams/{algorithm}.yml` |" in tuning()
