@@ -1,23 +1,21 @@
 """Scene files: TOML text -> validated, frozen dataclasses (and back).
 
 A scene file is data only: it is parsed with :mod:`tomllib` and every value is checked against
-the type and range declared on its dataclass field. A wrong field raises
-:class:`~netgym.errors.ConfigError` naming the field (``simulation.dt``) and its allowed range.
+the type and range declared on its dataclass field (:mod:`netgym.config_fields`). A wrong field
+raises :class:`~netgym.errors.ConfigError` naming the field (``simulation.dt``) and its allowed
+range.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import functools
-import math
 import tomllib
-import typing
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any, Mapping
 
-from netgym.arguments import is_integer, is_real
+from netgym.config_fields import build, choice, number, replaced
 from netgym.errors import ConfigError
 from netgym.kinds import ContactModel, Integrator
 
@@ -29,19 +27,6 @@ CAPTURE_RULES = ("held", "line")
 MAX_NET_PARTICLES = 20_000     # beyond this a scene is slow to build and settle
 MAX_SPRING_RATE = 2e9          # spring evaluations per simulated second beyond which a scene crawls
 SPRINGS_PER_PARTICLE = 6       # structural, shear and bending: at most two of each per particle
-
-
-def _num(lo: float, hi: float, *, lo_open: bool = False, hi_open: bool = False,
-         default: Any = dataclasses.MISSING) -> Any:
-    """A dataclass field whose value (or each element) must lie in ``lo..hi`` (optional in
-    scene files when it has a ``default``)."""
-    return field(default=default, metadata={"range": (lo, hi, lo_open, hi_open)})
-
-
-def _choice(*options: str, default: Any = dataclasses.MISSING) -> Any:
-    """A dataclass field whose value must be one of ``options`` (optional in scene files when
-    it has a ``default``)."""
-    return field(default=default, metadata={"choices": options})
 
 
 @dataclass(frozen=True)
@@ -56,22 +41,22 @@ class NetConfig:
     dampers along the springs do not damp a membrane's transverse swinging, air does.
     """
 
-    lower: tuple[float, float, float] = _num(-100.0, 100.0)
-    upper: tuple[float, float, float] = _num(-100.0, 100.0)
-    particles: tuple[int, int, int] = _num(3, 200)
-    open_face: str = _choice(*FACES)
+    lower: tuple[float, float, float] = number(-100.0, 100.0)
+    upper: tuple[float, float, float] = number(-100.0, 100.0)
+    particles: tuple[int, int, int] = number(3, 200)
+    open_face: str = choice(*FACES)
     fix_side_edges: bool = field()
-    particle_mass: float = _num(0.0, 100.0, lo_open=True)
-    drag: float = _num(0.0, 100.0)
-    pole_radius: float = _num(0.0, 1.0, lo_open=True)
+    particle_mass: float = number(0.0, 100.0, lo_open=True)
+    drag: float = number(0.0, 100.0)
+    pole_radius: float = number(0.0, 1.0, lo_open=True)
 
 
 @dataclass(frozen=True)
 class SpringConfig:
     """Stiffness ``ks`` (N/m) and damping ``kd`` (N s/m) of one spring type."""
 
-    ks: float = _num(0.0, 1e8, lo_open=True)
-    kd: float = _num(0.0, 1e6)
+    ks: float = number(0.0, 1e8, lo_open=True)
+    kd: float = number(0.0, 1e6)
 
 
 @dataclass(frozen=True)
@@ -87,16 +72,16 @@ class SpringsConfig:
 class BallConfig:
     """A ball: a rigid sphere without spin."""
 
-    radius: float = _num(0.01, 2.0)
-    mass: float = _num(0.0, 100.0, lo_open=True)
+    radius: float = number(0.01, 2.0)
+    mass: float = number(0.0, 100.0, lo_open=True)
 
 
 @dataclass(frozen=True)
 class ContactPairConfig:
     """Restitution (0..1) and Coulomb friction coefficient of one kind of contact."""
 
-    restitution: float = _num(0.0, 1.0)
-    friction: float = _num(0.0, 5.0)
+    restitution: float = number(0.0, 1.0)
+    friction: float = number(0.0, 5.0)
 
 
 @dataclass(frozen=True)
@@ -109,7 +94,7 @@ class ContactConfig:
     ball_ball: ContactPairConfig
     ball_ground: ContactPairConfig
     net_ground: ContactPairConfig
-    restitution_threshold: float = _num(0.0, 10.0)
+    restitution_threshold: float = number(0.0, 10.0)
 
 
 @dataclass(frozen=True)
@@ -135,21 +120,21 @@ class SimulationConfig:
     (``Simulator.step``) with every integrator but implicit Euler; throws do not take it yet.
     """
 
-    integrator: str = _choice(*INTEGRATORS)
-    dt: float = _num(0.0, 0.05, lo_open=True)
-    gravity: float = _num(-100.0, 0.0)
-    time_limit: float = _num(0.0, 120.0, lo_open=True)
-    max_ball_travel: float = _num(0.01, 0.9)
-    cg_tolerance: float = _num(1e-14, 1e-2)
-    cg_max_iterations: int = _num(1, 10_000)
-    divergence_speed: float = _num(1.0, 1e8, lo_open=True)
-    rest_speed: float = _num(0.0, 1.0, lo_open=True)
-    settle_speed: float = _num(0.0, 1.0, lo_open=True)
-    settle_integrator: str = _choice(*INTEGRATORS)
-    settle_dt: float = _num(0.0, 0.05, lo_open=True)
-    settle_inertia: float = _num(1.0, 100.0, default=1.0)
-    contact_model: str = _choice(*CONTACT_MODELS, default="impulse")
-    contact_stiffness: float = _num(1.0, 1e8, default=2e4)
+    integrator: str = choice(*INTEGRATORS)
+    dt: float = number(0.0, 0.05, lo_open=True)
+    gravity: float = number(-100.0, 0.0)
+    time_limit: float = number(0.0, 120.0, lo_open=True)
+    max_ball_travel: float = number(0.01, 0.9)
+    cg_tolerance: float = number(1e-14, 1e-2)
+    cg_max_iterations: int = number(1, 10_000)
+    divergence_speed: float = number(1.0, 1e8, lo_open=True)
+    rest_speed: float = number(0.0, 1.0, lo_open=True)
+    settle_speed: float = number(0.0, 1.0, lo_open=True)
+    settle_integrator: str = choice(*INTEGRATORS)
+    settle_dt: float = number(0.0, 0.05, lo_open=True)
+    settle_inertia: float = number(1.0, 100.0, default=1.0)
+    contact_model: str = choice(*CONTACT_MODELS, default="impulse")
+    contact_stiffness: float = number(1.0, 1e8, default=2e4)
 
 
 @dataclass(frozen=True)
@@ -162,12 +147,12 @@ class ThrowConfig:
     offset from the direction towards the opening's centre (degrees).
     """
 
-    distance: tuple[float, float] = _num(0.0, 100.0)
-    bearing: tuple[float, float] = _num(-360.0, 360.0)
-    height: tuple[float, float] = _num(0.0, 20.0)
-    speed: tuple[float, float] = _num(0.0, 40.0)
-    elevation: tuple[float, float] = _num(-89.0, 89.0)
-    azimuth: tuple[float, float] = _num(-180.0, 180.0)
+    distance: tuple[float, float] = number(0.0, 100.0)
+    bearing: tuple[float, float] = number(-360.0, 360.0)
+    height: tuple[float, float] = number(0.0, 20.0)
+    speed: tuple[float, float] = number(0.0, 40.0)
+    elevation: tuple[float, float] = number(-89.0, 89.0)
+    azimuth: tuple[float, float] = number(-180.0, 180.0)
 
 
 @dataclass(frozen=True)
@@ -177,9 +162,9 @@ class AirConfig:
     ``wind`` velocity. Air at sea level has a density of 1.2 kg/m^3; a smooth sphere a drag
     coefficient of about 0.47. The net's own air drag is ``net.drag``."""
 
-    density: float = _num(0.0, 10.0, default=0.0)
-    drag_coefficient: float = _num(0.0, 5.0, default=0.47)
-    wind: tuple[float, float, float] = _num(-100.0, 100.0, default=(0.0, 0.0, 0.0))
+    density: float = number(0.0, 10.0, default=0.0)
+    drag_coefficient: float = number(0.0, 5.0, default=0.47)
+    wind: tuple[float, float, float] = number(-100.0, 100.0, default=(0.0, 0.0, 0.0))
 
 
 @dataclass(frozen=True)
@@ -200,7 +185,7 @@ class SceneConfig:
     contact: ContactConfig
     simulation: SimulationConfig
     throw: ThrowConfig
-    capture_rule: str = _choice(*CAPTURE_RULES, default="held")
+    capture_rule: str = choice(*CAPTURE_RULES, default="held")
     air: AirConfig = AirConfig()
 
     def replace(self, overrides: Mapping[str, Any]) -> "SceneConfig":
@@ -210,90 +195,9 @@ class SceneConfig:
         and the whole scene is checked for consistency again."""
         cfg = self
         for dotted, value in overrides.items():
-            cfg = _replaced(cfg, dotted.split("."), value, dotted)
+            cfg = replaced(cfg, dotted.split("."), value, dotted)
         _check_consistency(cfg)
         return cfg
-
-
-def _replaced(node: Any, keys: list[str], value: Any, dotted: str) -> Any:
-    """A copy of the config ``node`` with the field at ``keys`` (its path below ``node``) set to
-    ``value``, validated."""
-    head, *rest = keys
-    field = next((f for f in dataclasses.fields(node) if f.name == head), None)
-    child = getattr(node, head, None)
-    if field is None or (rest and not dataclasses.is_dataclass(child)):
-        raise ConfigError(f"unknown field {dotted!r}")
-    new = _replaced(child, rest, value, dotted) if rest else _convert(value, _hints(type(node))[head], dotted, field)
-    return dataclasses.replace(node, **{head: new})
-
-
-def _range_text(spec: tuple[float, float, bool, bool]) -> str:
-    lo, hi, lo_open, hi_open = spec
-    return f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
-
-
-def _in_range(value: float, spec: tuple[float, float, bool, bool]) -> bool:
-    lo, hi, lo_open, hi_open = spec
-    above = value > lo if lo_open else value >= lo
-    below = value < hi if hi_open else value <= hi
-    return math.isfinite(value) and above and below
-
-
-def _scalar(value: Any, kind: type, name: str, f: dataclasses.Field) -> Any:
-    if kind is bool:
-        if not isinstance(value, bool):
-            raise ConfigError(f"{name} must be true or false, got {value!r}")
-        return value
-    if kind is str:
-        if not isinstance(value, str):
-            raise ConfigError(f"{name} must be a string, got {value!r}")
-        choices = f.metadata.get("choices")
-        if choices and value not in choices:
-            raise ConfigError(f"{name} = {value!r} is not allowed; choose one of {list(choices)}")
-        return value
-    if not is_real(value):
-        raise ConfigError(f"{name} must be a number, got {value!r}")
-    if kind is int and not is_integer(value):
-        raise ConfigError(f"{name} must be an integer, got {value!r}")
-    spec = f.metadata.get("range")
-    if spec and not _in_range(float(value), spec):
-        raise ConfigError(f"{name} = {value!r} is out of range; allowed: {_range_text(spec)}")
-    return kind(value)
-
-
-def _convert(value: Any, hint: Any, name: str, f: dataclasses.Field) -> Any:
-    if dataclasses.is_dataclass(hint):
-        if not isinstance(value, Mapping):
-            raise ConfigError(f"{name} must be a table, got {value!r}")
-        return _build(hint, value, name)
-    if typing.get_origin(hint) is tuple:
-        kinds = typing.get_args(hint)
-        if not isinstance(value, (list, tuple)) or len(value) != len(kinds):
-            raise ConfigError(f"{name} must be a list of {len(kinds)} numbers, got {value!r}")
-        return tuple(_scalar(v, k, f"{name}[{i}]", f) for i, (v, k) in enumerate(zip(value, kinds)))
-    return _scalar(value, hint, name, f)
-
-
-@functools.cache
-def _hints(cls: type) -> dict[str, Any]:
-    """The resolved type hints of a config class (resolving them is most of a validation's time)."""
-    return typing.get_type_hints(cls)
-
-
-def _build(cls: type, table: Mapping[str, Any], path: str) -> Any:
-    hints = _hints(cls)
-    names = [f.name for f in dataclasses.fields(cls)]
-    prefix = f"{path}." if path else ""
-    unknown = sorted(set(table) - set(names))
-    if unknown:
-        raise ConfigError(f"unknown field {prefix}{unknown[0]}; allowed fields: {names}")
-    missing = [f.name for f in dataclasses.fields(cls)
-               if f.name not in table and f.default is dataclasses.MISSING]
-    if missing:
-        raise ConfigError(f"missing field {prefix}{missing[0]}")
-    values = {f.name: _convert(table[f.name], hints[f.name], prefix + f.name, f)
-              for f in dataclasses.fields(cls) if f.name in table}
-    return cls(**values)
 
 
 def _check_consistency(cfg: SceneConfig) -> None:
@@ -334,7 +238,7 @@ def _check_cost(cfg: SceneConfig) -> None:
 
 def from_dict(table: Mapping[str, Any]) -> SceneConfig:
     """Validate a parsed scene table into a :class:`SceneConfig`."""
-    cfg = _build(SceneConfig, table, "")
+    cfg = build(SceneConfig, table, "")
     _check_consistency(cfg)
     return cfg
 

@@ -44,7 +44,7 @@ class Integrator(_Labelled):
 
 class ContactModel(_Labelled):
     """How contacts act: ``impulse``, projections and impulses after each substep (the
-    default, :mod:`netgym.physics.kernels.contacts`), or ``compliant``, Hunt-Crossley forces inside
+    default, :mod:`netgym.physics.kernels.impulse_contacts`), or ``compliant``, Hunt-Crossley forces inside
     the integrator (:mod:`netgym.physics.compliant`)."""
 
     IMPULSE = 0

@@ -205,7 +205,7 @@ def _stability(report: Report) -> list[str]:
            "(`netgym/bench/accuracy/stability_limits.py`), beside the linear estimate: the spectral radius of each method's "
            "step on the net's fastest mode, found by power iteration; for imex_euler, whose dampers are a Gauss-Seidel sweep rather than a force, the "
            "linearised step on the whole net, its sweep included: stable while lambda_max(h^2 F K F^T - 2 F F^T + "
-           "2 I) < 2 + 2 / keep, F the forward damper pass (`netgym/physics/model/stability.py`).",
+           "2 I) < 2 + 2 / keep, F the forward damper pass (`netgym/physics/stability.py`).",
            "", "| scene | integrator | bisection | linear estimate |", "|---|---|---:|---:|"]
     for r in report.stability:
         found = ">= 50 ms (largest tried)" if r["bisection"] >= 5e-2 else f"{r['bisection'] * 1e3:.3g} ms"

@@ -5,33 +5,31 @@ from __future__ import annotations
 import dataclasses
 import math
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from netgym.arguments import is_integer, is_real
+from netgym.arguments import is_integer
 from netgym.config import SceneConfig, load_scene
 from netgym.errors import EpisodeEndedError, InvalidArgumentError
+from netgym.envs.booking import ThrowBooking
 from netgym.envs.observation import ObservationIndex
 from netgym.envs.rendering import EnvRendering
 from netgym.envs.reset_options import checked_reset_options
-from netgym.envs.variation import (FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange,
-                                  throw_feedback)
+from netgym.envs.variation import FEEDBACK_LIMIT, FEEDBACK_SIZE, LaunchNoise, SceneRanges, WindRange
 from netgym.launch import Thrower, action_to_launch, launch_velocity, sample_thrower
 from netgym.physics.film import Film, FrameClock
-from netgym.physics.model.net_family import NetFamily, family_of
+from netgym.physics.net_family import NetFamily, family_of
 from netgym.physics.simulator import Simulator
 from netgym.physics.pause import Pause, pause
 from netgym.physics.watchdog import Watchdog
-from netgym.physics.throw import FreeFlight, ThrowResult, throw
+from netgym.physics.throw import throw
 from netgym.view.replay import Scenery, Snapshot
 
 REWARD_MODES = ("sparse", "shaped")
 FILMED_MODES = ("human", "rgb_array_list", "replay_list")   # render modes that take every frame of a throw
-SHAPED_SCALE = 1.0   # m: a miss whose path passes this far from the opening earns 0.5 / e
-SHAPED_MAX = 0.5     # largest reward of a miss in shaped mode
 
 
 def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float, feedback: bool) -> spaces.Box:
@@ -47,7 +45,34 @@ def _observation_space(scene: SceneConfig, centre: np.ndarray, floor: float, fee
     return spaces.Box(np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32)
 
 
-class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
+def _check_arguments(render_modes: list[str], render_mode: str | None, reward_mode: str, balls_per_episode: Any,
+                     flags: dict[str, Any]) -> None:
+    """Refuse a ``render_mode`` not among ``render_modes``, a ``reward_mode`` not among
+    :data:`REWARD_MODES`, a ``balls_per_episode`` outside [1, 50], and ``flags`` (by name)
+    that are not True or False."""
+    if render_mode is not None and render_mode not in render_modes:
+        raise InvalidArgumentError(f"render_mode = {render_mode!r} is not one of {render_modes}")
+    if reward_mode not in REWARD_MODES:
+        raise InvalidArgumentError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
+    if not is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
+        raise InvalidArgumentError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
+    for name, flag in flags.items():
+        if not isinstance(flag, (bool, np.bool_)):
+            raise InvalidArgumentError(f"{name} = {flag!r}; allowed: True or False")
+
+
+def _scene_changes(overrides: dict[str, Any] | None, integrator: str | None, dt: float | None,
+                   capture_rule: str | None, contact_model: str | None) -> dict[str, Any]:
+    """``overrides`` and the scene fields that ``make``'s own arguments set, those given."""
+    changes = dict(overrides or {})
+    for dotted, value in (("simulation.integrator", integrator), ("simulation.dt", dt),
+                          ("capture_rule", capture_rule), ("simulation.contact_model", contact_model)):
+        if value is not None:
+            changes[dotted] = value
+    return changes
+
+
+class NetCatchEnv(ThrowBooking, EnvRendering, gym.Env[np.ndarray, np.ndarray]):
     """Throw balls so that a mass-spring goal net catches them.
 
     A thrower stands at a random place around the net (default scene ``basket``: an open-top
@@ -163,25 +188,10 @@ class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
                  render_settling: bool = False, wind: tuple[float, float] | None = None,
                  launch_noise: tuple[float, float, float] | None = None, feedback: bool = False,
                  randomize: dict[str, tuple[float, float]] | None = None, contact_model: str | None = None) -> None:
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise InvalidArgumentError(f"render_mode = {render_mode!r} is not one of {self.metadata['render_modes']}")
-        if reward_mode not in REWARD_MODES:
-            raise InvalidArgumentError(f"reward_mode = {reward_mode!r} is not one of {list(REWARD_MODES)}")
-        if not is_integer(balls_per_episode) or not 1 <= balls_per_episode <= 50:
-            raise InvalidArgumentError(f"balls_per_episode = {balls_per_episode!r}; allowed: an integer in [1, 50]")
-        for name, flag in (("fast", fast), ("render_settling", render_settling), ("feedback", feedback)):
-            if not isinstance(flag, (bool, np.bool_)):
-                raise InvalidArgumentError(f"{name} = {flag!r}; allowed: True or False")
+        _check_arguments(self.metadata["render_modes"], render_mode, reward_mode, balls_per_episode,
+                         {"fast": fast, "render_settling": render_settling, "feedback": feedback})
         config = scene if isinstance(scene, SceneConfig) else load_scene(scene)
-        changes = dict(overrides or {})
-        if integrator is not None:
-            changes["simulation.integrator"] = integrator
-        if dt is not None:
-            changes["simulation.dt"] = dt
-        if capture_rule is not None:
-            changes["capture_rule"] = capture_rule
-        if contact_model is not None:
-            changes["simulation.contact_model"] = contact_model
+        changes = _scene_changes(overrides, integrator, dt, capture_rule, contact_model)
         self.wind_range = None if wind is None else WindRange.parse(wind)
         self.launch_noise = None if launch_noise is None else LaunchNoise.parse(launch_noise)
         self.feedback = bool(feedback)
@@ -325,63 +335,3 @@ class NetCatchEnv(EnvRendering, gym.Env[np.ndarray, np.ndarray]):
         if not np.all(np.isfinite(a)):
             raise InvalidArgumentError(f"action must be finite, got {a.tolist()}")
         return action_to_launch(np.clip(a, -1.0, 1.0), self.scene.throw)
-
-    def after_throw(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult,
-                    aimed: np.ndarray | None = None,
-                    settled: Pause = Pause()) -> tuple[np.ndarray, float, bool, bool, dict]:
-        """Book a finished throw, term by term: :meth:`_reward` (with :meth:`_shaping` for a
-        miss), :meth:`_feedback`, :meth:`_terminated`, :meth:`_next_thrower`, then the observation
-        and :meth:`_info` (``aimed``: the velocity the action meant, before launch noise;
-        ``settled``: the :class:`~netgym.physics.pause.Pause` after the throw)."""
-        self._throws_done += 1
-        self._caught += int(result.captured)
-        reward = self._reward(launch, velocity, result.captured)
-        self._feedback(launch, velocity, result.captured)
-        terminated = self._terminated()
-        self._next_thrower(terminated)
-        info = self._info(launch, velocity, result, velocity if aimed is None else aimed, settled)
-        if self.render_mode == "human":
-            self._renderer_show()
-        return self._observation(), reward, terminated, False, info
-
-    def _reward(self, launch: np.ndarray, velocity: np.ndarray, captured: bool) -> float:
-        """1 for a capture; else 0, or the shaping of a miss in ``shaped`` mode."""
-        if captured:
-            return 1.0
-        return self._shaping(launch, velocity) if self.reward_mode == "shaped" else 0.0
-
-    def _shaping(self, launch: np.ndarray, velocity: np.ndarray) -> float:
-        """A miss's reward in ``shaped`` mode: SHAPED_MAX x exp(-d / SHAPED_SCALE), ``d`` the
-        closest distance between the ball's free flight and the opening."""
-        miss = FreeFlight.of(self.sim.model).miss_distance(self.sim.opening, launch, velocity,
-                                                           self.sim.config.simulation.time_limit)
-        return SHAPED_MAX * math.exp(-miss / SHAPED_SCALE)
-
-    def _feedback(self, launch: np.ndarray, velocity: np.ndarray, captured: bool) -> None:
-        """With ``feedback``, note the throw's outcome for the next observation."""
-        if self.feedback:
-            self._last_throw = throw_feedback(self.sim, launch, velocity, captured)
-
-    def _terminated(self) -> bool:
-        """The episode ends after ``balls_per_episode`` throws (``step`` refuses to go on)."""
-        self._ended = self._throws_done >= self.balls_per_episode
-        return self._ended
-
-    def _next_thrower(self, terminated: bool) -> None:
-        """Draw the next throw's thrower, unless the episode ended; no throw is in flight."""
-        if not terminated:
-            self.thrower = sample_thrower(self.scene.throw, self.sim.opening, self.np_random)
-        self._flight = None
-
-    def _info(self, launch: np.ndarray, velocity: np.ndarray, result: ThrowResult, aimed: np.ndarray,
-              settled: Pause) -> dict[str, Any]:
-        """The step's info (see the class docstring): the throw's outcome and its work, the
-        settling before it and after it (``settled``), the launch, the wind and the scene's draws."""
-        settle_substeps = result.settle_substeps + settled.substeps
-        settle_time = result.settle_time + settled.time
-        return {"captured": result.captured, "reason": result.reason,
-                "final_position": result.final_position, "sim_time": result.time,
-                "substeps": settle_substeps + result.substeps, "throw_substeps": result.substeps,
-                "settle_substeps": settle_substeps, "settle_time": settle_time,
-                "launch_position": launch, "launch_velocity": velocity, "aimed_velocity": aimed,
-                "wind": self.sim.model.wind.copy(), "scene_draws": dict(self._draws)}

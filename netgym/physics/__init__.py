@@ -7,5 +7,3 @@ from netgym.physics.kernel_cache import drop_stale_kernels
 
 drop_stale_kernels(Path(__file__).parent)
 announce_compilation()
-
-from netgym.physics import throw as _throw  # noqa: E402,F401  (installs the deprecated Simulator.throw)

@@ -1,8 +1,8 @@
 """Integration of one state of a scene: the one Python entry to the stepping kernels.
 
 :func:`integrate`, :func:`integrate_watched` and :func:`relax` own the bookkeeping around
-:func:`~netgym.physics.kernels.stepping.advance`, :func:`~netgym.physics.kernels.watch.integrate_watched` and
-:func:`~netgym.physics.kernels.stepping.relax`: a copy of the state before, the simulated time after,
+:func:`~netgym.physics.stepping.advance`, :func:`~netgym.physics.fast_path.watch.integrate_watched` and
+:func:`~netgym.physics.stepping.relax`: a copy of the state before, the simulated time after,
 and on divergence the restored state and a :class:`~netgym.errors.SimulationDivergedError`.
 The state is integrated in place.
 """
@@ -15,13 +15,13 @@ from typing import Protocol
 import numpy as np
 
 from netgym.errors import SimulationDivergedError
-from netgym.physics.kernels import stepping
+from netgym.physics import stepping
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import Integrator
 from netgym.physics.model.model import KernelModel, Settings, State
-from netgym.physics.kernels.watch import Watch
-from netgym.physics.kernels.watch import integrate_watched as integrate_kernel
-from netgym.physics.kernels.watch import roll_watched
+from netgym.physics.fast_path.watch import Watch
+from netgym.physics.fast_path.watch import integrate_watched as integrate_kernel
+from netgym.physics.fast_path.watch import roll_watched
 
 
 class Integrand(Protocol):
@@ -58,7 +58,7 @@ class RestTest:
     """What a relaxation remembers between kernel calls: the positions of its last ``window``
     steps, its last kinetic energy, and whether no coordinate moved more than ``displacement``
     (m) over the window; ``damped``: the net is kinetically damped meanwhile, ``inertia``: the
-    net's inertia as a multiple of its mass meanwhile (see :func:`~netgym.physics.kernels.stepping.relax`)."""
+    net's inertia as a multiple of its mass meanwhile (see :func:`~netgym.physics.stepping.relax`)."""
 
     def __init__(self, shape: tuple[int, int], window: int, displacement: float, damped: bool = True,
                  inertia: float = 1.0) -> None:
@@ -81,7 +81,7 @@ def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps
     """Advance ``target.state`` by ``n_steps`` steps (none when 0), in place, and add the work
     to its counters; ``alone``: the row of a ball stepped alone, everything else asleep, for as
     many of them as it can touch nothing that moves
-    (:func:`~netgym.physics.kernels.stepping.advance_alone`), or -1. Returns None, or the error
+    (:func:`~netgym.physics.stepping.advance_alone`), or -1. Returns None, or the error
     when the integration diverged (the state is then restored as it was before the call)."""
     s = target.state
     if alone >= 0:
@@ -98,8 +98,8 @@ def integrate(target: Integrand, model: KernelModel, settings: Settings, n_steps
 def integrate_watched(target: Integrand, model: KernelModel, settings: Settings, workspace: Workspace,
                       watch: Watch, alone: bool = False) -> SimulationDivergedError | None:
     """Integrate ``target.state`` chunk after chunk until ``watch`` sees something that could
-    be decided (see :func:`~netgym.physics.kernels.watch.integrate_watched`; ``alone``: the
-    watch's ball alone, everything else asleep, :func:`~netgym.physics.kernels.watch.roll_watched`);
+    be decided (see :func:`~netgym.physics.fast_path.watch.integrate_watched`; ``alone``: the
+    watch's ball alone, everything else asleep, :func:`~netgym.physics.fast_path.watch.roll_watched`);
     returns as :func:`integrate` does."""
     s = target.state
     if alone:
@@ -113,7 +113,7 @@ def integrate_watched(target: Integrand, model: KernelModel, settings: Settings,
 def relax(target: Integrand, model: KernelModel, settings: Settings, n_steps: int, workspace: Workspace,
           rest: RestTest) -> SimulationDivergedError | None:
     """Relax ``target.state`` for at most ``n_steps`` steps, until ``rest`` passes (see
-    :func:`~netgym.physics.kernels.stepping.relax`); returns as :func:`integrate` does. A net without
+    :func:`~netgym.physics.stepping.relax`); returns as :func:`integrate` does. A net without
     balls (a new net settling) is relaxed by the kernels compiled without the balls' passes."""
     s = target.state
     return _guarded(target, settings, n_steps, lambda: (stepping.relax(

@@ -22,7 +22,7 @@ from netgym.physics.film import Film
 
 from netgym.physics.integration import Integrand, RestTest, Workspace, integrate, integrate_watched, relax
 from netgym.physics.model.model import KernelModel, Settings
-from netgym.physics.kernels.watch import Watch
+from netgym.physics.fast_path.watch import Watch
 
 CHUNK_SECONDS = 0.01          # simulated time between two checks of a plan's decisions
 
@@ -42,7 +42,7 @@ class Integrate:
 @dataclass(frozen=True)
 class Watched:
     """Request: integrate chunk after chunk of ``watch.chunk`` steps of ``dt`` with
-    ``integrator`` until the :class:`~netgym.physics.kernels.watch.Watch` sees something that could be
+    ``integrator`` until the :class:`~netgym.physics.fast_path.watch.Watch` sees something that could be
     decided (not for a filmed plan: a film needs every chunk); ``alone``: only the watch's ball
     moves, everything else asleep."""
 

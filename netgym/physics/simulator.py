@@ -20,7 +20,7 @@ import numpy as np
 from netgym.arguments import integer_argument, is_real, vector_argument
 from netgym.config import AirConfig, SceneConfig, load_scene
 from netgym.errors import InvalidArgumentError, NetNotAtRestError, SimulationDivergedError, UnstableTimeStepError
-from netgym.physics.kernels.forces import energies
+from netgym.physics.kernels.smooth_forces import energies
 from netgym.physics.integration import RestTest, Workspace
 from netgym.kinds import ContactModel, Integrator
 from netgym.physics.model.model import KernelModel, Model, Settings, State
@@ -28,22 +28,16 @@ from netgym.physics.model.opening import Opening
 from netgym.physics.outcomes import CaptureRule, capture_rule
 from netgym.physics.film import Film
 from netgym.physics.plans import Integrate, Plan, Relax, drive
-from netgym.physics.progress import Progress
+from netgym.physics.new_net import PreparedNet, settled_positions
 from netgym.physics.progress_guard import ProgressGuard
 from netgym.physics.recent import Recent
-from netgym.physics.model.stability import NetModes, net_modes_of, stable_dt
-from netgym.physics.kernels.stepping import new_counters
+from netgym.physics.stability import net_modes_of, stable_dt
+from netgym.physics.stepping import new_counters
 
-RELAX_IMPLICIT_DT = 0.01      # s, step of the fallback relaxation (implicit Euler; IMEX with compliant contacts)
 SETTLE_STABILITY_SHARE = 0.9  # the pause steps at most this share of its integrator's linear stability limit
 RELAX_REQUEST = 0.25          # s, the most simulated time one relaxation request covers (a moment to observe)
 RELAX_WINDOW = 0.1            # s over which relaxation must have moved nothing faster than simulation.settle_speed
 MAX_LAUNCH_SPEED = 100.0      # m/s
-SETTLE_TIME = 60.0            # s: the most simulated time the settling of a new net may take
-NEW_NET_SETTLE_SPEED = 0.01   # m/s: a new net settles (once per scene) until nothing moves faster (or settle_speed)
-NEW_NET_REST_SPEED = 1e-3     # m/s: then, on the scene's own integrator and dt, undamped, until nothing moves faster
-NEW_NET_WINDOW = 1.0          # s over which it must have moved nothing faster: from rest a creeping net gathers
-                              # speed slowly, and passed a 0.1 s window while still sagging
 
 
 @dataclass(frozen=True)
@@ -58,17 +52,6 @@ class Energy:
     def total(self) -> float:
         """Sum of the three."""
         return self.kinetic + self.spring + self.gravity
-
-
-@dataclass(frozen=True)
-class PreparedNet:
-    """What a simulator would otherwise work out for its net: its settled ``positions`` and the
-    ``modes`` of the net at its own inertia and ``settle_modes`` at the pause's (for nets drawn
-    per episode, see :mod:`~netgym.physics.model.net_family`)."""
-
-    positions: np.ndarray
-    modes: NetModes
-    settle_modes: NetModes
 
 
 @dataclass(frozen=True)
@@ -355,8 +338,8 @@ class Simulator:
 
 def prepare_net(config: SceneConfig, model: Model | None = None) -> PreparedNet:
     """The work a new :class:`Simulator` of scene ``config`` needs done first: its net settled
-    under gravity from its built shape (up to ``SETTLE_TIME`` of simulated time, with a
-    progress bar when it takes a while) and its modes at its own inertia and the pause's.
+    under gravity from its built shape (:func:`~netgym.physics.new_net.settled_positions`: up to
+    a minute of simulated time, with a progress bar when it takes a while) and its modes at its own inertia and the pause's.
     Cached per scene (air acts on balls only, so scenes that differ only in their air share it);
     ``model``: the scene's, if built already."""
     key = _without_air(config)
@@ -364,36 +347,9 @@ def prepare_net(config: SceneConfig, model: Model | None = None) -> PreparedNet:
         model = Model.from_config(config) if model is None else model
         built = PreparedNet(model.geometry.positions, net_modes_of(model, config),
                             net_modes_of(model, config, config.simulation.settle_inertia))
-        settled = _settled(Simulator(config, check_stability=False, prepared=built))
+        settled = settled_positions(Simulator(config, check_stability=False, prepared=built))
         _PREPARED[key] = dataclasses.replace(built, positions=settled)
     return _PREPARED[key]
-
-
-def _settled(sim: Simulator) -> np.ndarray:
-    """The positions ``sim``'s net, from its built shape, comes to rest at: kinetically damped near
-    the equilibrium, then on the scene's own dynamics until it stays. Where those dynamics cannot
-    hold the net still (an unstable dt, allowed with check_stability=False), the damped
-    equilibrium; where the damped relaxation diverges, the equilibrium found with implicit Euler
-    (IMEX Euler for compliant contacts, which have no implicit Euler step) from the built shape."""
-    progress = Progress(f"settling the net of {sim.model.n_net} particles", SETTLE_TIME)
-    speed = min(NEW_NET_SETTLE_SPEED, sim.config.simulation.settle_speed)
-    try:
-        sim.run(sim.relax_plan(SETTLE_TIME, settle_speed=speed), observer=progress)
-        damped = sim.checkpoint()
-        try:
-            sim.run(sim.relax_plan(SETTLE_TIME, sim.integrator, sim.dt, settle_speed=NEW_NET_REST_SPEED,
-                                   damped=False, window=NEW_NET_WINDOW), observer=progress)
-        except NetNotAtRestError:
-            sim.sleep()  # a heavily overdamped net creeps on for minutes: as settled as SETTLE_TIME gets it
-        except SimulationDivergedError:
-            sim.restore(damped)
-    except SimulationDivergedError:
-        sim.state = State.at_rest(sim.model)
-        fallback = Integrator.IMEX_EULER if sim.contact_model == ContactModel.COMPLIANT else Integrator.IMPLICIT_EULER
-        sim.run(sim.relax_plan(SETTLE_TIME, fallback, RELAX_IMPLICIT_DT, settle_speed=speed), observer=progress)
-    finally:
-        progress.close()
-    return sim.state.x.copy()
 
 
 def _without_air(config: SceneConfig) -> SceneConfig:

@@ -17,7 +17,7 @@ from agents.bench import first_step_text
 from agents.bench.first_step import FirstStep, add_runs, cold_and_warm, latest_runs, run_figures
 from netgym.config import load_scene
 from netgym.errors import InvalidArgumentError
-from netgym.physics.kernels import stepping
+from netgym.physics import stepping
 from netgym.physics.compile_notice import MESSAGE, SHOWN, CompileNotice
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import ContactModel, Integrator
@@ -42,11 +42,11 @@ def test_a_cold_first_step_compiles_only_the_scenes_integrator_and_says_so_once(
     compiled = {name for name in INTEGRATOR_KERNELS.values() if f"netgym.physics.kernels.integrators.{name}" in cold.kernels}
     assert compiled == {used}
     # the new net settles without balls: the balls' contacts wait for the first throw that reaches the net
-    assert "netgym.physics.kernels.contacts.resolve_ground" in cold.kernels
-    assert "netgym.physics.kernels.contacts.resolve_ball_contacts" not in cold.kernels
+    assert "netgym.physics.kernels.impulse_contacts.resolve_ground" in cold.kernels
+    assert "netgym.physics.kernels.impulse_contacts.resolve_ball_contacts" not in cold.kernels
     assert cold.stderr.count(MESSAGE) == 1 and " kernels compiled in " in cold.stderr
     assert MESSAGE not in warm.stderr and " kernels compiled in " not in warm.stderr
-    assert "netgym.physics.kernels.stepping._step" not in warm.kernels   # loaded inside relax, not compiled
+    assert "netgym.physics.stepping._step" not in warm.kernels   # loaded inside relax, not compiled
 
 
 def test_settings_are_of_their_integrators_class() -> None:

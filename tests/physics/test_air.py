@@ -12,9 +12,9 @@ from netgym.bench.accuracy.fast_path import compare, summarise
 from netgym.bench.throws import sample_throws
 from netgym.config import ConfigError, load_scene
 from netgym.physics.kernels import air
-from netgym.physics.throw import flight
+from netgym.physics.fast_path import flight
 from netgym.physics.model.model import ball_drag_constant
-from netgym.physics.throw.flight import Ground
+from netgym.physics.fast_path.flight import Ground
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import FreeFlight
 

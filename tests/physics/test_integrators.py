@@ -16,7 +16,7 @@ from netgym.physics.kernels import integrators
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import Integrator
 from netgym.physics.model.model import Settings
-from netgym.physics.model.springs import Springs
+from netgym.physics.kernels.springs import Springs
 
 OMEGA = 2.0 * math.pi   # rad/s: a period of 1 s
 REST = 1.0              # m, the spring's rest length

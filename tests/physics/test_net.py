@@ -161,7 +161,7 @@ def test_the_kernels_wavefront_order_of_springs_gives_bitwise_the_same_steps(int
     from netgym.physics.kernels.integrators import Scratch, step_euler, step_imex_euler, step_implicit_euler
     from netgym.kinds import Integrator
     from netgym.physics.model.model import Model, Settings
-    from netgym.physics.model.springs import kernel_indices
+    from netgym.physics.kernels.springs import kernel_indices
 
     model = Model.from_config(load_scene("basket"))
     ordered = model.kernel.springs

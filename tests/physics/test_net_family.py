@@ -9,12 +9,13 @@ import netgym  # noqa: F401  (registers the ids)
 from netgym import ENVIRONMENTS
 from netgym.config import load_scene
 from netgym.envs import NetCatchEnv
-from netgym.physics.kernels.forces import spring_forces
+from netgym.physics.kernels.smooth_forces import spring_forces
 from netgym.physics.model.model import Model
-from netgym.physics.model.net_family import NetFamily, family_of, field_value
-from netgym.physics.simulator import NEW_NET_REST_SPEED, NEW_NET_WINDOW, Simulator
-from netgym.physics.model.springs import Springs
-from netgym.physics.model.stability import net_modes
+from netgym.physics.net_family import NetFamily, family_of, field_value
+from netgym.physics.new_net import NEW_NET_REST_SPEED, NEW_NET_WINDOW
+from netgym.physics.simulator import Simulator
+from netgym.physics.kernels.springs import Springs
+from netgym.physics.stability import net_modes
 
 RANGES = tuple((field, float(lo), float(hi)) for field, (lo, hi)
                in ENVIRONMENTS["NetCatchRandomized-v0"].kwargs["randomize"].items())

@@ -60,7 +60,7 @@ def test_the_pause_ends_once_nothing_moved_faster_than_the_settle_speed() -> Non
 def test_the_pause_steps_at_settle_dt_within_the_stability_limit_of_its_integrator() -> None:
     """simulation.settle_dt is taken as given where settle_integrator is stable at it, else cut
     to 90% of that integrator's linear stability limit on the net."""
-    from netgym.physics.model.stability import stable_dt
+    from netgym.physics.stability import stable_dt
 
     assert Simulator("basket", {"simulation.settle_dt": 0.006}).settle_dt == 0.006
     sim = Simulator("basket")
@@ -101,7 +101,7 @@ def test_a_relaxation_with_inertia_leaves_the_damper_shares_of_true_masses() -> 
     """IMEX Euler keeps its damper shares for the step size they are for; a relaxation with
     inertia computes them for its heavier net, so it marks them stale after it: a step at the
     same dt afterwards is bitwise one taken with a fresh scratch."""
-    from netgym.physics.kernels import stepping
+    from netgym.physics import stepping
     from netgym.physics.integration import RestTest, Workspace
     from netgym.kinds import Integrator
 

@@ -9,15 +9,15 @@ import numpy as np
 import pytest
 
 from netgym.errors import UnstableTimeStepError
-from netgym.physics.throw import flight
-from netgym.physics.kernels import stepping
+from netgym.physics.fast_path import flight
+from netgym.physics import stepping
 from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import Contact, Integrator
 from netgym.physics.model.model import KernelModel, Settings
 from netgym.physics.model.opening import Opening
 from netgym.physics.simulator import Simulator
-from netgym.physics.model.springs import Springs
+from netgym.physics.kernels.springs import Springs
 
 # a small net hung high above the ground: it swings under gravity without touching anything
 LIFTED = {"net.particles": [5, 5, 6], "net.lower": [-1.0, -1.0, 5.0], "net.upper": [1.0, 1.0, 7.5]}
@@ -267,7 +267,7 @@ def test_imex_stability_limit_of_one_damped_spring_is_analytic_and_the_kernels()
     h^2 omega^2 g < 2 (1 + g), g = 1 / (1 + h kd w / 2)^2, a quadratic in h. The estimate finds
     its root, far beyond the elastic limit 2 / omega, and the kernel's own step matrix turns
     unstable there."""
-    from netgym.physics.model.stability import net_modes
+    from netgym.physics.stability import net_modes
 
     ks, kd, mass = 1500.0, 50.0, 2.0
     x, inv_mass, springs, params = _one_damped_spring(ks, kd, mass)

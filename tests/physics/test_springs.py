@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from netgym.physics.kernels import forces, spring_law
+from netgym.physics.kernels import smooth_forces as forces, spring_law
 from netgym.physics.simulator import Simulator
-from netgym.physics.model.springs import EXISTS, Springs
+from netgym.physics.kernels.springs import EXISTS, Springs
 
 
 def _serial_spring_forces(x, v, pairs, params, f) -> None:

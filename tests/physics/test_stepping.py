@@ -1,4 +1,4 @@
-"""The stepping kernels (``netgym/physics/kernels/stepping.py``): a ball's flight between contacts, the
+"""The stepping kernels (``netgym/physics/stepping.py``): a ball's flight between contacts, the
 substeps a fast ball takes, and the ``entered`` flags kept by :func:`stepping.update_entered`
 as balls cross the opening, each against its closed form."""
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from netgym.config import load_scene
-from netgym.physics.kernels import stepping
+from netgym.physics import stepping
 from netgym.physics.model.model import Model
 from netgym.physics.simulator import Simulator
 

@@ -166,7 +166,7 @@ def test_the_boxed_clearance_never_exceeds_the_exact_one() -> None:
     """clearance_at_least (the net by its bounding box) is a lower bound of the exact clearance
     wherever the ball is, inside the net's box and out, with another ball and the poles about;
     equal where the poles or the other ball are nearest; far from the net it is close to it."""
-    from netgym.physics.kernels.stepping import net_box
+    from netgym.physics.stepping import net_box
     from netgym.physics.kernels.surroundings import clearance, clearance_at_least
 
     sim = Simulator("basket")
@@ -207,7 +207,7 @@ def test_the_segment_broad_phase_changes_nothing() -> None:
     every segment gives (an unbounded extent lists every particle), on the states of a fast ball
     hitting a loaded basket: resting balls, impacts, and impacts that move the bodies so far that
     the list is abandoned mid-way."""
-    from netgym.physics.kernels import contacts
+    from netgym.physics.kernels import impulse_contacts as contacts
 
     sim = _sim("basket")
     for x in (-0.4, 0.3):

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from netgym.bench.throws import sample_throws
-from netgym.physics.throw import approach
+from netgym.physics.fast_path import approach
 from netgym.physics.throw import recipe
 from netgym.physics.plans import Integrate
 from netgym.physics.simulator import Simulator
-from netgym.physics.kernels.watch import RestWindow, at_rest, remember
+from netgym.physics.fast_path.watch import RestWindow, at_rest, remember
 from netgym.physics.throw import throw
 
 

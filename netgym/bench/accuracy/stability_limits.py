@@ -9,7 +9,7 @@ import numpy as np
 
 from netgym.config import INTEGRATORS
 from netgym.errors import SimulationDivergedError
-from netgym.physics.model.stability import stable_dt
+from netgym.physics.stability import stable_dt
 from netgym.physics.simulator import Simulator
 
 

@@ -1,6 +1,6 @@
 """A roofline of the spring pass: what this machine can do against what the pass does.
 
-The spring pass (:func:`netgym.physics.kernels.forces.spring_forces`) reads, per spring, its two
+The spring pass (:func:`netgym.physics.kernels.smooth_forces.spring_forces`) reads, per spring, its two
 particle indices and three parameters (rest length, ks, kd), the positions and velocities of its
 two particles, and adds a force to each of them: a floor on its time is set by the bytes it
 moves at the bandwidth of the cache level its arrays live in, by its arithmetic at the core's
@@ -15,7 +15,7 @@ Counts per spring (float64, 8 bytes): reads 2 indices + 3 parameters + 2 x 3 pos
 (5), 3 scalings by the inverse length, 3 velocity differences and their projection (5), the
 magnitude (4) and 3 + 6 for the force and its two accumulations: 32, besides one square root
 and one division. These are the counts of a pass that reads each spring's own data; the dense
-groups of :class:`~netgym.physics.model.springs.Springs` read neither indices nor a stiffness and
+groups of :class:`~netgym.physics.kernels.springs.Springs` read neither indices nor a stiffness and
 damping a spring, which is how a pass can come near this floor.
 """
 
@@ -32,7 +32,7 @@ from numba import njit
 
 import netgym.physics
 from netgym.physics.kernel_cache import drop_stale_kernels
-from netgym.physics.kernels import forces
+from netgym.physics.kernels import smooth_forces as forces
 from netgym.physics.simulator import Simulator
 
 drop_stale_kernels(Path(__file__).parent, depends_on=(Path(netgym.physics.__file__).parent,))  # its kernels call physics
@@ -110,7 +110,7 @@ def sqrt_div_rate(repeats: int = 20) -> float:
 
 
 def spring_pass_arguments(scene: str = "basket") -> tuple[np.ndarray, ...]:
-    """The arguments of :func:`~netgym.physics.kernels.forces.spring_forces` for ``scene``'s net at rest."""
+    """The arguments of :func:`~netgym.physics.kernels.smooth_forces.spring_forces` for ``scene``'s net at rest."""
     sim = Simulator(scene)
     return sim.state.x, sim.state.v, sim.kernel_model.springs, np.zeros_like(sim.state.x)
 

@@ -99,13 +99,39 @@ class Feature(NamedTuple):
     l2: float
 
 
+class Point(NamedTuple):
+    """The point ``a`` touches, as a :class:`Feature` names it (the fields of the same names):
+    its bodies ``i``, ``j`` with their weights ``wi``, ``wj``, the penalty's ``weight`` and
+    ``slope`` at the segment's parameter ``s``, the segment's axis (ex, ey, ez) and ``l2``."""
+
+    i: int
+    wi: float
+    j: int
+    wj: float
+    weight: float
+    slope: float
+    s: float
+    ex: float
+    ey: float
+    ez: float
+    l2: float
+
+
 @inline_kernel
-def _towards(dx, dy, dz, reach, i, wi, j, wj, weight, slope, s, ex, ey, ez, l2):
-    """The :class:`Feature` of ``a`` at (dx, dy, dz) from the point, ``reach`` (m) apart at touch."""
+def _body(i):
+    """The :class:`Point` of body ``i`` (a particle or a ball), or of a static one (-1): the
+    whole point, of full penalty weight."""
+    return Point(i, 1.0, -1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+
+
+@inline_kernel
+def _towards(dx, dy, dz, reach, p):
+    """The :class:`Feature` of ``a`` at (dx, dy, dz) from the :class:`Point` ``p``, ``reach``
+    (m) apart at touch."""
     dist = math.sqrt(dx * dx + dy * dy + dz * dz)
     inv = 1.0 / dist if dist > 1e-12 else 0.0
-    return Feature(reach - dist, dx * inv, dy * inv, dz * inv if dist > 1e-12 else 1.0, i, wi, j, wj, weight, slope,
-                   s, ex, ey, ez, l2)
+    return Feature(reach - dist, dx * inv, dy * inv, dz * inv if dist > 1e-12 else 1.0, p.i, p.wi, p.j, p.wj,
+                   p.weight, p.slope, p.s, p.ex, p.ey, p.ez, p.l2)
 
 
 @kernel
@@ -119,8 +145,7 @@ def feature(x, model, kind, a, b, region=LIVE):
         return Feature(reach - za, 0.0, 0.0, 1.0, -1, 0.0, -1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
     if kind == PARTICLE or kind == BALL:
         reach = radius if kind == PARTICLE else 2.0 * radius
-        return _towards(xa - x[b, 0], ya - x[b, 1], za - x[b, 2], reach, b, 1.0, -1, 0.0, 1.0, 0.0, 0.0,
-                        0.0, 0.0, 0.0, 1.0)
+        return _towards(xa - x[b, 0], ya - x[b, 1], za - x[b, 2], reach, _body(b))
     if kind == POLE:
         poles = model.poles
         px, py, pz = poles.start[b, 0], poles.start[b, 1], poles.start[b, 2]
@@ -130,15 +155,14 @@ def feature(x, model, kind, a, b, region=LIVE):
             t = min(max(t, 0.0), 1.0)
         elif region != SIDE:
             t = 0.0 if region == START_CAP else 1.0
-        return _towards(xa - px - t * ex, ya - py - t * ey, za - pz - t * ez, radius + poles.radius[b], -1, 0.0, -1,
-                        0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+        return _towards(xa - px - t * ex, ya - py - t * ey, za - pz - t * ez, radius + poles.radius[b], _body(-1))
     i, j = np.int64(model.segments[b, 0]), np.int64(model.segments[b, 1])
     ex, ey, ez = x[j, 0] - x[i, 0], x[j, 1] - x[i, 1], x[j, 2] - x[i, 2]
     l2 = ex * ex + ey * ey + ez * ez
     s = ((xa - x[i, 0]) * ex + (ya - x[i, 1]) * ey + (za - x[i, 2]) * ez) / l2
     weight, slope = law.segment_weight(s)
-    return _towards(xa - x[i, 0] - s * ex, ya - x[i, 1] - s * ey, za - x[i, 2] - s * ez, radius, i, 1.0 - s, j, s,
-                    weight, slope, s, ex, ey, ez, l2)
+    return _towards(xa - x[i, 0] - s * ex, ya - x[i, 1] - s * ey, za - x[i, 2] - s * ez, radius,
+                    Point(i, 1.0 - s, j, s, weight, slope, s, ex, ey, ez, l2))
 
 
 @inline_kernel

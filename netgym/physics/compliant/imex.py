@@ -35,11 +35,15 @@ def _impulse(v, inv_mass, a, ft, jx, jy, jz):
 
 
 @inline_kernel
-def _held(v, inv_mass, a, ft, h, w_eff, k_t, c_t, limit, z, c, tx, ty, tz):
-    """Hold a gripping contact (sliding at (tx, ty, tz), anchors ``z``) by its anchor over
-    ``h`` (backward Euler); returns False, changing nothing, where the impulse that would hold
-    it leaves Coulomb's cone ``h * limit`` (``limit``: friction times the normal force)."""
-    zx, zy, zz = grip.tangential(z[c, 0], z[c, 1], z[c, 2], ft.nx, ft.ny, ft.nz)
+def _held(v, inv_mass, a, ft, h, w_eff, terms, limit, anchor, sliding):
+    """Hold a gripping contact by its anchor over ``h`` (backward Euler): its anchor's
+    stiffness and damping ``terms`` (:func:`~netgym.physics.compliant.grip.anchor_terms`), its
+    anchor displacement ``anchor`` (its row of the anchors), its sliding velocity ``sliding``
+    (tx, ty, tz); returns False, changing nothing, where the impulse that would hold it leaves
+    Coulomb's cone ``h * limit`` (``limit``: friction times the normal force)."""
+    k_t, c_t = terms
+    tx, ty, tz = sliding
+    zx, zy, zz = grip.tangential(anchor[0], anchor[1], anchor[2], ft.nx, ft.ny, ft.nz)
     scale = 1.0 / (1.0 + h * w_eff * (c_t + h * k_t))
     jx = ((tx - h * w_eff * k_t * zx) * scale - tx) / w_eff
     jy = ((ty - h * w_eff * k_t * zy) * scale - ty) / w_eff
@@ -91,8 +95,8 @@ def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping, z)
         ux, uy, uz, closing = cl.approach(v, a, ft)
         tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
         if contacts.grip[c] == grip.STICK:
-            k_t, c_t = grip.anchor_terms(stiffness, ft.weight, w_eff)
-            if _held(v, inv_mass, a, ft, h, w_eff, k_t, c_t, friction * push / h, z, c, tx, ty, tz):
+            terms = grip.anchor_terms(stiffness, ft.weight, w_eff)
+            if _held(v, inv_mass, a, ft, h, w_eff, terms, friction * push / h, z[c], (tx, ty, tz)):
                 continue
             contacts.grip[c] = grip.SLOW
             z[c, 0], z[c, 1], z[c, 2] = 0.0, 0.0, 0.0

@@ -8,10 +8,13 @@ smooth, so RK4 keeps its fourth order through contact."""
 from __future__ import annotations
 
 import math
+from typing import Any, NamedTuple
+
+import numpy as np
 
 from netgym.physics.compliant import contacts as cl
 from netgym.physics.compliant import forces
-from netgym.physics.compliant.system import RATE, Z, Z0, Z1, ZLO, ZSUM, freeze, rhs
+from netgym.physics.compliant.system import RATE, Z, Z0, Z1, ZLO, ZSUM, Work, freeze, rhs
 from netgym.physics.kernels.integrators import rk4_accumulate, rk4_combine, rk4_stage_state
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.kernels.rows import copy_first_rows, copy_rows
@@ -21,13 +24,38 @@ LOCATE_ITERATIONS = 100   # trial steps at most per event
 LOCATE_TOLERANCE = 1e-13  # of the step: an event's bracket narrower than this is located
 
 
+class System(NamedTuple):
+    """What a located step integrates, the same all through it: the bodies' ``inv_mass``, the
+    scene's :class:`~netgym.physics.model.model.KernelModel`, the acceleration ``net_gravity``
+    of the net's weight, the scratch ``work`` and the contacts' ``stiffness`` (N/m)."""
+
+    inv_mass: np.ndarray
+    model: Any
+    net_gravity: float
+    work: Work
+    stiffness: float
+
+
+class Phase(NamedTuple):
+    """The bodies' positions ``x`` and velocities ``v`` and the listed contacts' anchors ``z``
+    at one instant of a located step: its start, its end, or a trial instant inside it (rows
+    of ``work.rows`` and ``work.anchor``)."""
+
+    x: np.ndarray
+    v: np.ndarray
+    z: np.ndarray
+
+
 @kernel
-def _rk4(x0, v0, inv_mass, model, net_gravity, h, work, stiffness, x1, v1, z1):
-    """One classical RK4 step of ``h`` from (x0, v0) and the anchors ``work.anchor[Z0]`` into
-    (x1, v1) and ``z1``, the contacts' modes, regions and grips frozen."""
+def _rk4(system, start, h, end):
+    """One classical RK4 step of ``h`` from the :class:`Phase` ``start`` (its anchors
+    ``work.anchor[Z0]``) into the :class:`Phase` ``end``, the contacts' modes, regions and grips
+    frozen."""
+    inv_mass, model, net_gravity, work, stiffness = system
+    x0, v0, z0 = start
     rows, anchor, count = work.rows, work.anchor, work.contacts.count[0]
     xs, vs, a, xsum, vsum, f = rows[0], rows[1], rows[2], rows[3], rows[4], rows[5]
-    z0, z, rate, zsum = anchor[Z0], anchor[Z], anchor[RATE], anchor[ZSUM]
+    z, rate, zsum = anchor[Z], anchor[RATE], anchor[ZSUM]
     copy_first_rows(z, z0, count)
     rhs(x0, v0, inv_mass, model, net_gravity, work, stiffness, True, f, a)
     copy_rows(xsum, v0)
@@ -39,8 +67,8 @@ def _rk4(x0, v0, inv_mass, model, net_gravity, h, work, stiffness, x1, v1, z1):
         rhs(xs, vs, inv_mass, model, net_gravity, work, stiffness, True, f, a)
         rk4_accumulate(xsum, vsum, vs, a, stage)
         _anchor_stage(zsum, rate, zsum, count, 1.0 if stage == 2 else 2.0)
-    rk4_combine(x0, v0, xsum, vsum, h, x1, v1)
-    _anchor_stage(z0, zsum, z1, count, h / 6.0)
+    rk4_combine(x0, v0, xsum, vsum, h, end.x, end.v)
+    _anchor_stage(z0, zsum, end.z, count, h / 6.0)
 
 
 @inline_kernel
@@ -52,21 +80,23 @@ def _anchor_stage(base, rate, out, count, scale):
 
 
 @kernel
-def _values(x, v, inv_mass, model, work, stiffness, z):
-    """Event values of the listed contacts in (x, v) and the anchors ``z``, in their frozen
-    modes, regions and grips, into ``touch1``, ``on1``, ``rate1``, ``side1`` and ``grip1``."""
+def _values(system, at):
+    """Event values of the listed contacts in the :class:`Phase` ``at``, in their frozen modes,
+    regions and grips, into ``touch1``, ``on1``, ``rate1``, ``side1`` and ``grip1``."""
+    inv_mass, model, _, work, stiffness = system
     contacts, damping = work.contacts, work.damping
-    cl.event_values(x, v, model, contacts, damping, work.touch1, work.on1, work.rate1, work.side1)
-    forces.grip_values(x, v, inv_mass, model, contacts, z, stiffness, damping, work.grip1)
+    cl.event_values(at.x, at.v, model, contacts, damping, work.touch1, work.on1, work.rate1, work.side1)
+    forces.grip_values(at.x, at.v, inv_mass, model, contacts, at.z, stiffness, damping, work.grip1)
 
 
 @kernel
-def _changes(x, v, inv_mass, model, work, stiffness, z):
-    """:func:`_values` in (x, v, z), the modes and regions there into ``modes`` and ``regions``,
-    and the contacts whose mode, region or grip's event sign differs from the frozen one into
-    ``changed``; returns how many did."""
+def _changes(system, at):
+    """:func:`_values` in the :class:`Phase` ``at``, the modes and regions there into ``modes``
+    and ``regions``, and the contacts whose mode, region or grip's event sign differs from the
+    frozen one into ``changed``; returns how many did."""
+    work = system.work
     contacts, count = work.contacts, work.contacts.count[0]
-    _values(x, v, inv_mass, model, work, stiffness, z)
+    _values(system, at)
     cl.modes_from(work.touch1, work.on1, count, work.modes)
     cl.regions_from(work.side1, contacts, work.modes, work.regions)
     n = 0
@@ -137,76 +167,99 @@ def _graze(work, count, h):
 @kernel
 def rk4_located(x, v, inv_mass, model, net_gravity, h, work, stiffness):
     """RK4 over ``h`` in place, the anchors in ``work.anchor[Z0]`` too, each change of a
-    contact's mode, region or grip located (see the module)."""
-    rows, anchor = work.rows, work.anchor
-    x0, v0, x1, v1, xlo, vlo = rows[6], rows[7], rows[8], rows[9], rows[10], rows[11]
-    z0, z1, zlo = anchor[Z0], anchor[Z1], anchor[ZLO]
-    count = work.contacts.count[0]
-    copy_rows(x0, x)
-    copy_rows(v0, v)
-    freeze(x0, v0, inv_mass, model, work, stiffness, z0, True)
+    contact's mode, region or grip located (see the module): a step to the end of what is left,
+    its changes, brief ones among them (:func:`_grazed`), the earliest located
+    (:func:`_locate`), and on from just past it."""
+    system = System(inv_mass, model, net_gravity, work, stiffness)
+    rows, anchor, count = work.rows, work.anchor, work.contacts.count[0]
+    start, end = Phase(rows[6], rows[7], anchor[Z0]), Phase(rows[8], rows[9], anchor[Z1])
+    trial = Phase(rows[10], rows[11], anchor[ZLO])
+    copy_rows(start.x, x)
+    copy_rows(start.v, v)
+    freeze(start.x, start.v, inv_mass, model, work, stiffness, start.z, True)
     left = h
     for _event in range(MAX_EVENTS + 1):
-        _rk4(x0, v0, inv_mass, model, net_gravity, left, work, stiffness, x1, v1, z1)
-        n_changed = _changes(x1, v1, inv_mass, model, work, stiffness, z1)
+        _rk4(system, start, left, end)
+        n_changed = _changes(system, end)
         hi = 1.0
         if _event < MAX_EVENTS:
-            peak = _graze(work, count, left)
-            if peak < 1.0:
-                _rk4(x0, v0, inv_mass, model, net_gravity, peak * left, work, stiffness, xlo, vlo, zlo)
-                grazed = _changes(xlo, vlo, inv_mass, model, work, stiffness, zlo)
-                if grazed > 0:
-                    n_changed, hi = grazed, peak
-                    _accept(work, x1, v1, xlo, vlo)
-                    work.events[1] += 1
-                else:
-                    _changes(x1, v1, inv_mass, model, work, stiffness, z1)
+            n_changed, hi = _grazed(system, start, end, trial, left, n_changed)
         if n_changed == 0 or _event == MAX_EVENTS:
             break
         work.events[0] += 1
-        lo = 0.0
-        f_lo, f_hi = _crossing(work, n_changed, False), _crossing(work, n_changed, True)
-        side, stale, width = 0, 0, hi
-        for _ in range(LOCATE_ITERATIONS):
-            if hi - lo <= LOCATE_TOLERANCE:
-                break
-            if stale >= 3:
-                theta, stale = 0.5 * (lo + hi), 0          # regula falsi stalled: bisect
-            elif f_lo <= 0.0:
-                theta = lo + LOCATE_TOLERANCE              # lo lies on the event within rounding
-            else:
-                theta = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-            theta = min(max(theta, lo + 0.5 * LOCATE_TOLERANCE), hi - 0.5 * LOCATE_TOLERANCE)
-            _rk4(x0, v0, inv_mass, model, net_gravity, theta * left, work, stiffness, xlo, vlo, zlo)
-            _values(xlo, vlo, inv_mass, model, work, stiffness, zlo)
-            value = _crossing(work, n_changed, True)
-            if value >= 0.0:  # not past the event: an overlap of exactly 0 still leaves the mode
-                lo, f_lo = theta, value
-                f_hi = 0.5 * f_hi if side == -1 else f_hi   # Illinois: the stale end's value halved
-                side = -1
-            else:
-                hi, f_hi = theta, value
-                _accept(work, x1, v1, xlo, vlo)
-                f_lo = 0.5 * f_lo if side == 1 else f_lo
-                side = 1
-            if hi - lo <= 0.5 * width:
-                width, stale = hi - lo, 0
-            else:
-                stale += 1
+        hi = _locate(system, start, end, trial, left, n_changed, hi)
         # just past the earliest event: its modes, regions and grips frozen from here
-        copy_rows(x0, x1)
-        copy_rows(v0, v1)
-        copy_first_rows(z0, z1, count)
-        freeze(x0, v0, inv_mass, model, work, stiffness, z0, True)
+        copy_rows(start.x, end.x)
+        copy_rows(start.v, end.v)
+        copy_first_rows(start.z, end.z, count)
+        freeze(start.x, start.v, inv_mass, model, work, stiffness, start.z, True)
         left *= 1.0 - hi
-    copy_rows(x, x1)
-    copy_rows(v, v1)
-    copy_first_rows(z0, z1, count)
+    copy_rows(x, end.x)
+    copy_rows(v, end.v)
+    copy_first_rows(start.z, end.z, count)
+
+
+@kernel
+def _grazed(system, start, end, trial, h, n_changed):
+    """Look inside the step of ``h`` from ``start`` to ``end`` (where :func:`_changes` found
+    ``n_changed`` changes) for a brief touch or separation (:func:`_graze`): if the trial step
+    to its earliest instant finds changes, that trial is the end and the events are located
+    within it. Returns (the changes, the fraction of the step they lie within)."""
+    work = system.work
+    peak = _graze(work, work.contacts.count[0], h)
+    if peak < 1.0:
+        _rk4(system, start, peak * h, trial)
+        grazed = _changes(system, trial)
+        if grazed > 0:
+            _accept(work, end, trial)
+            work.events[1] += 1
+            return grazed, peak
+        _changes(system, end)
+    return n_changed, 1.0
+
+
+@kernel
+def _locate(system, start, end, trial, h, n_changed, hi):
+    """The earliest event of the ``n_changed`` changed contacts within the first fraction
+    ``hi`` of the step of ``h`` from ``start`` (``end``: the state there): Illinois' regula
+    falsi on trial steps, bisecting where it stalls, each trial past the event taken as the
+    end. Returns the fraction of the step just past the event."""
+    work = system.work
+    lo = 0.0
+    f_lo, f_hi = _crossing(work, n_changed, False), _crossing(work, n_changed, True)
+    side, stale, width = 0, 0, hi
+    for _ in range(LOCATE_ITERATIONS):
+        if hi - lo <= LOCATE_TOLERANCE:
+            break
+        if stale >= 3:
+            theta, stale = 0.5 * (lo + hi), 0          # regula falsi stalled: bisect
+        elif f_lo <= 0.0:
+            theta = lo + LOCATE_TOLERANCE              # lo lies on the event within rounding
+        else:
+            theta = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        theta = min(max(theta, lo + 0.5 * LOCATE_TOLERANCE), hi - 0.5 * LOCATE_TOLERANCE)
+        _rk4(system, start, theta * h, trial)
+        _values(system, trial)
+        value = _crossing(work, n_changed, True)
+        if value >= 0.0:  # not past the event: an overlap of exactly 0 still leaves the mode
+            lo, f_lo = theta, value
+            f_hi = 0.5 * f_hi if side == -1 else f_hi   # Illinois: the stale end's value halved
+            side = -1
+        else:
+            hi, f_hi = theta, value
+            _accept(work, end, trial)
+            f_lo = 0.5 * f_lo if side == 1 else f_lo
+            side = 1
+        if hi - lo <= 0.5 * width:
+            width, stale = hi - lo, 0
+        else:
+            stale += 1
+    return hi
 
 
 @inline_kernel
-def _accept(work, x1, v1, xlo, vlo):
-    """Take the trial state (xlo, vlo) and its anchors as the step's end (x1, v1)."""
-    copy_rows(x1, xlo)
-    copy_rows(v1, vlo)
-    copy_first_rows(work.anchor[Z1], work.anchor[ZLO], work.contacts.count[0])
+def _accept(work, end, trial):
+    """Take the :class:`Phase` ``trial`` as the step's end, ``end``."""
+    copy_rows(end.x, trial.x)
+    copy_rows(end.v, trial.v)
+    copy_first_rows(end.z, trial.z, work.contacts.count[0])

@@ -11,7 +11,7 @@ import numpy as np
 from netgym.physics.compliant import contacts as cl
 from netgym.physics.compliant import forces, grip
 from netgym.physics.kernels.air import _acceleration as air_acceleration
-from netgym.physics.kernels.forces import accelerations
+from netgym.physics.kernels.smooth_forces import accelerations
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 Z, RATE, Z0, ZSUM, Z1, ZLO = 0, 1, 2, 3, 4, 5   # rows of Work.anchor

@@ -4,7 +4,7 @@ A ball's acceleration is ``g - k |v - wind| (v - wind)`` with ``k = 0.5 rho C_d 
 :func:`~netgym.physics.model.model.ball_drag_constant`). Its flight has no closed form, so
 :func:`fly` integrates it with classical RK4 in steps of at most ``max_step`` (the fast path's
 flight; error far below the contacts' own, see ``tests/physics/test_air.py``), with the same ground
-bounce as :mod:`netgym.physics.throw.flight`, and sliding on the ground against Coulomb friction
+bounce as :mod:`netgym.physics.fast_path.flight`, and sliding on the ground against Coulomb friction
 with the wind pushing. :func:`rk4_step` is also the balls' free flight inside the kernels.
 """
 
@@ -49,7 +49,7 @@ def rk4_step(p, v, h, gravity, k, wind):
 @kernel
 def bounce(v, restitution, friction, threshold):
     """A lone ball's ground impulse, on its velocity ``v`` in place (the one law of the closed-form
-    flights of :mod:`netgym.physics.throw.flight` and of :func:`fly`): restitution above the
+    flights of :mod:`netgym.physics.fast_path.flight` and of :func:`fly`): restitution above the
     threshold, Coulomb friction bounded by friction times the normal impulse."""
     closing = v[2]
     e = restitution if -closing > threshold else 0.0
@@ -88,7 +88,7 @@ def fly(p, v, tau, k, wind, ground, max_step):
     """Move a lone ball (``p``, ``v`` 3-vectors, in place) through air for ``tau`` seconds:
     RK4 steps of at most ``max_step`` while airborne, the ground bounce where its lowest point
     reaches the ground (the step is cut at the contact), sliding once it no longer bounces.
-    ``ground``: a :class:`~netgym.physics.throw.flight.Ground` (the ball's radius, gravity, and the
+    ``ground``: a :class:`~netgym.physics.fast_path.flight.Ground` (the ball's radius, gravity, and the
     ground's restitution, friction and restitution threshold)."""
     radius, gravity, restitution, friction, threshold = ground
     left = tau

@@ -30,7 +30,7 @@ from numba.core.errors import NumbaTypeError
 from numba.extending import overload
 
 from netgym.physics.kernels import spring_law
-from netgym.physics.kernels.forces import accelerations, spring_axis, spring_forces
+from netgym.physics.kernels.smooth_forces import accelerations, spring_axis, spring_forces
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.kinds import Integrator
 from netgym.physics.kernels.rows import add_pair_force, add_scaled, copy_rows

@@ -9,7 +9,7 @@ from typing import NamedTuple
 import numpy as np
 
 from netgym.physics.kernels import air
-from netgym.physics.kernels.contacts import COINCIDENT
+from netgym.physics.kernels.impulse_contacts import COINCIDENT
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 

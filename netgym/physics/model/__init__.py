@@ -1,2 +1,2 @@
-"""The scene as the kernels take it: the net's geometry and springs, the opening, the static
-model, the net's modes and stable steps, and families of nets drawn per episode."""
+"""The scene as the kernels take it: the net's geometry, the opening, the contact tables and the
+static model with its state."""

@@ -21,7 +21,7 @@ from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.kinds import Contact, ContactModel, Integrator, SpringKind
 from netgym.physics.model.net import NetGeometry, build_net
 from netgym.physics.model.opening import Opening, OpeningRecord
-from netgym.physics.model.springs import SpringLayout, Springs, kernel_indices
+from netgym.physics.kernels.springs import SpringLayout, Springs, kernel_indices
 
 
 def ball_drag_constant(config: SceneConfig) -> float:
@@ -208,7 +208,7 @@ class Model:
     @functools.cached_property
     def kernel(self) -> KernelModel:
         """The arrays and constants the kernels need, as one record; its springs a
-        :class:`~netgym.physics.model.springs.Springs`."""
+        :class:`~netgym.physics.kernels.springs.Springs`."""
         springs = self.spring_layout[0]
         return KernelModel(self.n_net, springs, kernel_indices(self.segments), self.segment_start, self.poles,
                            Materials.of_table(self.contact), self.restitution_threshold, self.gravity, self.drag,

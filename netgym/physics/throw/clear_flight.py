@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from netgym.physics.throw import approach, flight
+from netgym.physics.fast_path import approach, flight
 
-from netgym.physics.kernels import stepping
+from netgym.physics import stepping
 from netgym.physics.outcomes import Reason
 from netgym.physics.plans import Plan, Tick
 from netgym.physics.throw import decisions

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from netgym.kinds import ContactModel
-from netgym.physics.throw import approach
+from netgym.physics.fast_path import approach
 
 from netgym.physics.kernels import surroundings
 from netgym.physics.kernels.surroundings import survey

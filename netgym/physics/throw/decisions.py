@@ -18,11 +18,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from netgym.physics.kernels import stepping
+from netgym.physics import stepping
 from netgym.physics.outcomes import Reason
 from netgym.physics.throw.clearance import can_roll_alone, flight_time
 from netgym.physics.throw.records import TUNING, ThrowContext
-from netgym.physics.kernels.watch import far_from_a_slow_scene, near_check
+from netgym.physics.fast_path.watch import far_from_a_slow_scene, near_check
 
 
 def rule_decision(throw: ThrowContext, position: np.ndarray, entered: bool) -> Reason | None:
@@ -47,7 +47,7 @@ class Verdict(NamedTuple):
     whether, undecided, the scene may go to sleep (``quiet``: the ball could fly clear for a
     step, or move alone for one, near nothing that moves, and nothing but the ball moves any
     more, or the rest moves slowly and the ball is far from it,
-    :func:`~netgym.physics.kernels.watch.far_from_a_slow_scene`). A ball that can do neither is
+    :func:`~netgym.physics.fast_path.watch.far_from_a_slow_scene`). A ball that can do neither is
     integrated with the rest, however far and slow that is: asleep, the scene would be woken
     again at once, with no time gone by."""
 
@@ -82,7 +82,7 @@ def after_piece(throw: ThrowContext) -> Verdict:
 def after_check(throw: ThrowContext, at_rest: bool, unreachable: bool, lo: np.ndarray,
                 hi: np.ndarray) -> Reason | None:
     """The reason the throw's outcome is decided now, or None, from the check after a chunk
-    (:func:`~netgym.physics.kernels.watch.near_check`): the ball flies away (it cannot come back into
+    (:func:`~netgym.physics.fast_path.watch.near_check`): the ball flies away (it cannot come back into
     the box ``lo``..``hi`` around everything else), it is ``at_rest``, or it can no longer reach
     the opening (``unreachable``: the energy bound, which counts, besides the energy free now,
     all the wind could still feed the balls before the deadline)."""

@@ -1,6 +1,6 @@
 """One lone ball's free flight: the one object every question about it is asked of.
 
-Without air the flight is closed form (:mod:`netgym.physics.throw.flight`: arcs, bounces, sliding);
+Without air the flight is closed form (:mod:`netgym.physics.fast_path.flight`: arcs, bounces, sliding);
 through air it is integrated (:mod:`netgym.physics.kernels.air`: RK4 steps, the same bounce). The fast
 path asks it where the ball is after a while, whether it can still come into a box, and how
 long it certainly takes to travel a distance; the environment asks how close a throw's flight
@@ -17,7 +17,7 @@ import numpy as np
 
 from netgym.physics.kernels import air, surroundings
 
-from netgym.physics.throw import flight
+from netgym.physics.fast_path import flight
 from netgym.physics.model.model import Model
 from netgym.physics.model.opening import Opening
 

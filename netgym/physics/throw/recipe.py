@@ -22,7 +22,8 @@ from netgym.arguments import vector_argument
 from netgym.kinds import ContactModel
 from netgym.errors import SimulationDivergedError
 from netgym.physics.compliant import contacts as compliant_contacts
-from netgym.physics.kernels import air, reach
+from netgym.physics.kernels import air
+from netgym.physics.fast_path import reach
 from netgym.physics.film import Film
 from netgym.physics.outcomes import Reason
 from netgym.physics.pause import pause_plan
@@ -35,7 +36,7 @@ from netgym.physics.throw.filming import film_after
 from netgym.physics.throw.free_flight import FreeFlight
 from netgym.physics.throw.records import TUNING, Ball, Course, ThrowContext, ThrowResult
 from netgym.physics.kernels.surroundings import LoneBall
-from netgym.physics.kernels.watch import RestWindow, Watch
+from netgym.physics.fast_path.watch import RestWindow, Watch
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator
@@ -113,7 +114,7 @@ class Throw:
                               watch=self._watch(deadline, about))
 
     def _watch(self, deadline: float, about: float) -> Watch:
-        """The :class:`~netgym.physics.kernels.watch.Watch` of a throw launched now, with the ball's
+        """The :class:`~netgym.physics.fast_path.watch.Watch` of a throw launched now, with the ball's
         ``deadline`` and ``about`` (see :class:`Course`): its energy budget measured now."""
         throw = self.context
         sim, row = throw.sim, throw.ball.row
@@ -141,7 +142,7 @@ class Throw:
         moves slowly and the ball is far from it (a net swaying after the ball left it off the
         rim), the scene sleeps again. The ball alone flies again only once it is clear of
         everything, where the compiled loop of its chunks hands back
-        (:func:`~netgym.physics.kernels.watch.roll_watched`).
+        (:func:`~netgym.physics.fast_path.watch.roll_watched`).
 
         Every piece is booked with a :class:`~netgym.physics.progress_guard.ProgressGuard`: a
         loop that stopped moving simulated time on raises
@@ -208,7 +209,7 @@ class Throw:
     def _roll_alone(self) -> Plan:
         """Step the ball alone for one chunk, everything else asleep (unfilmed, chunk after chunk
         in one request, while nothing could be decided and it stays near nothing that moves:
-        :func:`~netgym.physics.kernels.watch.roll_watched`): it touches only poles, pinned
+        :func:`~netgym.physics.fast_path.watch.roll_watched`): it touches only poles, pinned
         particles and the ground, on the steps the full simulation takes, with its arithmetic,
         while the net's residual motion (below ``sleep_speed``) is left out as in a flight."""
         throw = self.context

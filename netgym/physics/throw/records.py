@@ -11,7 +11,7 @@ from netgym.physics.film import Film
 from netgym.physics.outcomes import CaptureRule, Reason
 from netgym.physics.throw.free_flight import FreeFlight
 from netgym.physics.kernels.surroundings import LoneBall
-from netgym.physics.kernels.watch import Watch
+from netgym.physics.fast_path.watch import Watch
 
 if TYPE_CHECKING:
     from netgym.physics.simulator import Simulator

@@ -19,7 +19,7 @@ from netgym.bench.accuracy.fast_path import throw_each
 from netgym.bench.accuracy.model_agreement import COMPLIANT
 from netgym.physics.compliant import contacts as compliant_contacts
 from netgym.physics.compliant import law
-from netgym.physics.kernels import reach
+from netgym.physics.fast_path import reach
 from netgym.physics.simulator import Simulator
 from netgym.physics.throw import throw
 

@@ -1,4 +1,4 @@
-"""The contact kernels (``netgym/physics/kernels/contacts.py``) against analytic cases: a head-on pair
+"""The contact kernels (``netgym/physics/kernels/impulse_contacts.py``) against analytic cases: a head-on pair
 of balls with restitution e, a ball at rest on a particle, the friction cone's boundary and a
 ball pressing on a spring segment. Each case is a handful of bodies handed to the kernels
 directly, so the expectation is a formula of momentum, restitution and Coulomb's law."""
@@ -8,12 +8,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from netgym.physics.kernels import contacts
+from netgym.physics.kernels import impulse_contacts as contacts
 from netgym.physics.model import contact_tables
 from netgym.kinds import Contact
 from netgym.physics.model.model import KernelModel, index_segments
 from netgym.physics.model.opening import Opening
-from netgym.physics.model.springs import Springs
+from netgym.physics.kernels.springs import Springs
 
 RADIUS = 0.3           # m, ball radius
 THRESHOLD = 0.2        # m/s, restitution threshold: slower approaches do not bounce

@@ -185,7 +185,7 @@ def test_the_substep_count_is_the_closing_speed_rule_whatever_the_shortcut() -> 
     states, from slow to fast, the count is the rule's own."""
     import math
 
-    from netgym.physics.kernels import stepping
+    from netgym.physics import stepping
 
     sim = Simulator("basket")
     m, rng = sim.model, np.random.default_rng(5)

@@ -8,14 +8,14 @@ import math
 import numpy as np
 import pytest
 
-from netgym.physics.kernels import stepping
+from netgym.physics import stepping
 from netgym.physics.model.contact_tables import Materials, Poles
 from netgym.physics.kernels.integrators import Scratch
 from netgym.kinds import Contact, ContactModel, Integrator
 from netgym.physics.model.model import KernelModel, Settings, index_segments
 from netgym.physics.model.opening import Opening
 from netgym.physics.simulator import Simulator
-from netgym.physics.model.springs import Springs
+from netgym.physics.kernels.springs import Springs
 from netgym.physics.throw import throw
 
 

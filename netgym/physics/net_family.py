@@ -33,7 +33,7 @@ import numpy as np
 from netgym.config import SceneConfig, to_dict
 from netgym.physics.model.model import Model
 from netgym.physics.simulator import PreparedNet, Simulator, prepare_net
-from netgym.physics.model.stability import NetModes, net_modes
+from netgym.physics.stability import NetModes, net_modes
 
 EQUILIBRIUM_FREE_SECTIONS = ("ball", "contact", "air")
 """Scene sections none of whose fields moves the empty net's equilibrium."""

@@ -14,7 +14,7 @@ import math
 from typing import NamedTuple
 
 from netgym.physics.compliant.contacts import gather, potential
-from netgym.physics.kernels.forces import energies
+from netgym.physics.kernels.smooth_forces import energies
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_distance
 

@@ -2,7 +2,7 @@
 steps, its rest window, and the loop that integrates chunk after chunk while nothing could be
 decided.
 
-The fast path's decisions stay in :mod:`netgym.physics.throws`; after each chunk they read
+The fast path's decisions stay in :mod:`netgym.physics.throw.decisions`; after each chunk they read
 :func:`near_check` (how fast everything else moves, whether the ball is still inside the box
 around everything else, at rest, or out of the opening's reach). :func:`integrate_watched`
 makes the same check after each chunk within one kernel call and hands back to the throw as
@@ -23,9 +23,9 @@ import numpy as np
 from netgym.physics.compliant.contacts import ContactList
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_depth
-from netgym.physics.kernels.reach import Budget, out_of_reach
+from netgym.physics.fast_path.reach import Budget, out_of_reach
 from netgym.physics.kernels.rows import copy_rows
-from netgym.physics.kernels.stepping import DIVERGED, OK, advance, advance_alone
+from netgym.physics.stepping import DIVERGED, OK, advance, advance_alone
 from netgym.physics.kernels.surroundings import clearance, still_since, survey
 
 
@@ -56,7 +56,7 @@ class RestWindow(NamedTuple):
 
 
 class Watch(NamedTuple):
-    """What a throw's kernels (these and :func:`~netgym.physics.throw.approach.approach`) know of it:
+    """What a throw's kernels (these and :func:`~netgym.physics.fast_path.approach.approach`) know of it:
     the ball's ``row``, its ``launched`` and ``deadline`` times (s), the scene's ``dt`` (s),
     ``chunk`` (steps between two checks), ``clearance`` (m: closer than this to anything, the
     ball is simulated, not flown), ``grow`` (m: the box around everything but the ball grows by
@@ -64,7 +64,7 @@ class Watch(NamedTuple):
     decide; inf: never), ``sleep_speed`` (m/s: slower than this, everything but the ball may go
     to sleep), ``far_clearance`` (m) and ``far_sleep_speed`` (m/s: the same while the ball is
     farther than that from everything, :func:`far_from_a_slow_scene`), its
-    :class:`~netgym.physics.kernels.reach.Budget`, its :class:`RestWindow` and ``box`` (6,), the
+    :class:`~netgym.physics.fast_path.reach.Budget`, its :class:`RestWindow` and ``box`` (6,), the
     grown box of the last check (min x, y, z, max x, y, z), and room for the compliant contacts
     the energy bound lists (:data:`~netgym.physics.compliant.contacts.NO_CONTACTS` with impulse
     contacts)."""
@@ -131,7 +131,7 @@ def near_check(x, v, inv_mass, time, model, watch):
     whether the ball lies inside the box around everything else (the watch's ``box``, written
     here: every body but the ball and the poles' axes, grown by ``grow``), whether it is at
     rest (:func:`at_rest`), and whether it can no longer reach the opening before its deadline
-    (:func:`~netgym.physics.kernels.reach.out_of_reach`)."""
+    (:func:`~netgym.physics.fast_path.reach.out_of_reach`)."""
     row, box = watch.row, watch.box
     others = survey(x, v, row, model.poles, box)
     inside = True
@@ -177,7 +177,7 @@ def _decidable(x, v, inv_mass, model, watch, t, dt):
 @kernel
 def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, watch, time):
     """Integrate chunk after chunk of ``watch.chunk`` steps (fewer before the deadline), with
-    :func:`~netgym.physics.kernels.stepping.advance`, from ``time`` while nothing could be decided:
+    :func:`~netgym.physics.stepping.advance`, from ``time`` while nothing could be decided:
     stop after the chunk at which the deadline is within half a step, the ball lies at least
     ``rule_depth`` past the opening's plane, or :func:`near_check` finds everything else
     slower than ``sleep_speed`` (or far enough and slow enough: :func:`far_from_a_slow_scene`),
@@ -200,7 +200,7 @@ def integrate_watched(x, v, inv_mass, entered, model, settings, scratch, stats, 
 @kernel
 def roll_watched(x, v, inv_mass, entered, model, settings, stats, watch, time):
     """:func:`integrate_watched` for the ball of ``watch.row`` alone, everything else asleep
-    (:func:`~netgym.physics.kernels.stepping.advance_alone`): chunk after chunk, until a chunk
+    (:func:`~netgym.physics.stepping.advance_alone`): chunk after chunk, until a chunk
     stops short (the ball could touch something that moves), or after the chunk at which the
     deadline is within half a step, the ball lies at least ``rule_depth`` past the opening's
     plane, :func:`near_check` finds it outside the box, at rest or out of reach, or it is clear

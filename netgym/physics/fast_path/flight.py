@@ -1,7 +1,7 @@
 """Closed-form motion of a lone ball: parabolic arcs, ground bounces and sliding to rest.
 
 Used by the simulator's fast path while the ball cannot touch the net. The bounce is the
-same impulse as the ground contact of :mod:`netgym.physics.kernels.contacts` (restitution above the
+same impulse as the ground contact of :mod:`netgym.physics.kernels.impulse_contacts` (restitution above the
 threshold, Coulomb friction bounded by friction times the normal impulse); a ball that no
 longer bounces slides, decelerating at ``friction * |g|``.
 """

@@ -10,7 +10,7 @@ import math
 
 from netgym.physics.kernels import spring_law
 from netgym.physics.kernels.jit import inline_kernel, kernel
-from netgym.physics.model.springs import EXISTS, ON_FIRST, ON_SECOND, POSITIONS, REST, TOTALS, VELOCITIES
+from netgym.physics.kernels.springs import EXISTS, ON_FIRST, ON_SECOND, POSITIONS, REST, TOTALS, VELOCITIES
 
 
 @inline_kernel
@@ -50,7 +50,7 @@ def _from_columns(columns, rows, n):
 @inline_kernel
 def _dense_group_forces(positions, velocities, params, forces, offset, first, length, start, ks, kd):
     """Forces of the dense group (offset, first, length, start), of stiffness ``ks`` and damping
-    ``kd``, into ``forces`` (a :class:`~netgym.physics.model.springs.Springs`' ``dense_forces``:
+    ``kd``, into ``forces`` (a :class:`~netgym.physics.kernels.springs.Springs`' ``dense_forces``:
     planes ON_FIRST and ON_SECOND), -0.0 (which adds nothing, bitwise) where a spring is missing
     or degenerate; ``params``: its ``dense_params`` (rows REST, EXISTS). Contiguous columns and
     unsigned indices: the compiler vectorises this loop."""
@@ -95,9 +95,9 @@ def _add_dense_group(totals, forces, first, length, start):
 @kernel
 def spring_forces(x, v, springs, f):
     """Add every spring's force to ``f`` (n, 3); ``springs``: a
-    :class:`~netgym.physics.model.springs.Springs`. Bitwise the sum of a loop over the springs sorted
+    :class:`~netgym.physics.kernels.springs.Springs`. Bitwise the sum of a loop over the springs sorted
     by particle pair: on the second particles group by group in decreasing offset, then on the
-    first particles in increasing offset (the :mod:`~netgym.physics.model.springs` module says why).
+    first particles in increasing offset (the :mod:`~netgym.physics.kernels.springs` module says why).
     The sparse groups' loops stay in this body: as an inlined kernel they ran slower."""
     groups, sparse, scratch = springs.groups, springs.sparse, springs.sparse_forces
     columns = springs.columns
@@ -149,7 +149,7 @@ def spring_forces(x, v, springs, f):
 @kernel
 def accelerations(x, v, inv_mass, gravity, drag, springs, a):
     """Write into ``a`` the accelerations of all bodies (zero for fixed ones): springs (a
-    :class:`~netgym.physics.model.springs.Springs`), gravity and linear air drag ``-drag * v``."""
+    :class:`~netgym.physics.kernels.springs.Springs`), gravity and linear air drag ``-drag * v``."""
     a[:] = 0.0
     spring_forces(x, v, springs, a)
     for k in range(x.shape[0]):

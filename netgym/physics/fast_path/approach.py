@@ -1,5 +1,5 @@
 """The ball's approach to the sleeping scene, in numba: the pieces of flight of the fast path
-(see :meth:`~netgym.physics.throws.Throw._fly_clear`) that nothing can decide, in closed form
+(see :func:`~netgym.physics.throw.clear_flight.fly_clear`) that nothing can decide, in closed form
 (:func:`approach`) or through air (:func:`approach_through_air`).
 
 A piece flies the ball, held clear of everything by its clearance, for the longest time it
@@ -17,10 +17,10 @@ import math
 import numpy as np
 
 from netgym.physics.kernels import air
-from netgym.physics.throw.flight import ground_time, sliding
+from netgym.physics.fast_path.flight import ground_time, sliding
 from netgym.physics.kernels.jit import inline_kernel, kernel
 from netgym.physics.model.opening import opening_depth
-from netgym.physics.kernels.stepping import net_box, update_entered
+from netgym.physics.stepping import net_box, update_entered
 from netgym.physics.kernels.surroundings import air_safe_time, clearance, clearance_at_least, speed, travel_time
 
 

@@ -2,7 +2,7 @@
 ends of a spring in turn, and grouped by index offset for the force pass, whose arithmetic the
 compiler then vectorises.
 
-The force pass (:func:`netgym.physics.kernels.forces.spring_forces`) gives bitwise the forces of a loop
+The force pass (:func:`netgym.physics.kernels.smooth_forces.spring_forces`) gives bitwise the forces of a loop
 over the springs in the order they were given (sorted by their first particle, then their
 second), because every particle receives the same contributions in the same order. A spring
 (i, j), i < j, has the offset d = j - i. In the given order a particle p first receives the

@@ -14,9 +14,9 @@ from netgym.physics.compliant.system import new_work
 from netgym.physics.kernels.jit import inline_kernel, kernel
 
 from netgym.physics.kernels.air import rk4_step
-from netgym.physics.kernels.contacts import (Bodies, resolve_ball_contacts, resolve_ball_ground, resolve_ground,
+from netgym.physics.kernels.impulse_contacts import (Bodies, resolve_ball_contacts, resolve_ball_ground, resolve_ground,
                                              resolve_lone_ball)
-from netgym.physics.kernels.forces import kinetic_energy
+from netgym.physics.kernels.smooth_forces import kinetic_energy
 from netgym.physics.kernels.integrators import START_SLOT, smooth_step
 from netgym.physics.kernels.rows import copy_row, copy_rows
 from netgym.physics.kernels.surroundings import alone_for_a_step
@@ -197,23 +197,23 @@ def _contact_work(settings, x, model, scratch):
 
 
 @kernel
-def _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity, work):
-    """One step of ``settings.dt`` (see :func:`advance`), in substeps where balls move fast: the
-    passes of a substep in order, each handed the :class:`~netgym.physics.model.model.KernelModel`
-    or the parts of it it needs; ``buffers`` from :func:`_step_buffers`; ``net_gravity``: the
+def _step(bodies, entered, model, settings, scratch, stats, buffers, net_gravity, work):
+    """One step of ``settings.dt`` (see :func:`advance`) of ``bodies`` (their ``start``: every
+    body's position at the start of the substep), in substeps where balls move fast: the passes
+    of a substep in order, each handed the :class:`~netgym.physics.model.model.KernelModel` or
+    the parts of it it needs; ``buffers`` from :func:`_step_buffers`; ``net_gravity``: the
     acceleration gravity gives the net (``model.gravity`` but in a relaxation with inertia);
     ``entered``: the balls' flags, or None for a net without balls, whose kernels numba then
     compiles without the balls' passes (it prunes the branches on ``entered is not None``)."""
     speeds = buffers[2]
     n_net, radius, dt = model.n_net, model.ball_radius, settings.dt
-    start = scratch.work[START_SLOT]  # every body's position at the start of the substep
+    x, v, start = bodies.x, bodies.v, bodies.start
     before = start[n_net:]
     n_balls = x.shape[0] - n_net
     substeps = 1
     if entered is not None and n_balls > 0:
         substeps = _substeps(x, v, n_net, radius, dt, settings.max_travel * radius, speeds)
     h = dt / substeps
-    bodies = Bodies(x, v, inv_mass, start)
     for _sub in range(substeps):
         copy_rows(start, x)
         substep(settings, bodies, entered, model, net_gravity, h, scratch, stats, buffers, work)
@@ -242,10 +242,11 @@ def advance(x, v, inv_mass, entered, model, settings, n_steps, scratch, stats):
     """
     buffers = _step_buffers(x, model.n_net)
     work = contact_work(settings, x, model, scratch)
+    bodies = Bodies(x, v, inv_mass, scratch.work[START_SLOT])  # a slot the integrators leave alone
     for _ in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, model.gravity, work)
+        _step(bodies, entered, model, settings, scratch, stats, buffers, model.gravity, work)
     return OK if _finite_and_below(v, settings.divergence_speed) else DIVERGED
 
 
@@ -364,12 +365,13 @@ def _relax_steps(x, v, inv_mass, entered, model, settings, n_steps, scratch, sta
     buffers = _step_buffers(x, model.n_net)
     work = contact_work(settings, x, model, scratch)
     net_gravity = model.gravity / rest.inertia
+    bodies = Bodies(x, v, inv_mass, scratch.work[START_SLOT])  # a slot the integrators leave alone
     memory.steps = 0
     memory.at_rest = False
     for i in range(n_steps):
         if not _finite_and_below(v, settings.divergence_speed):
             return DIVERGED
-        _step(x, v, inv_mass, entered, model, settings, scratch, stats, buffers, net_gravity, work)
+        _step(bodies, entered, model, settings, scratch, stats, buffers, net_gravity, work)
         memory.steps = i + 1
         if rest.damped:
             kinetic = kinetic_energy(v[:model.n_net], inv_mass[:model.n_net])
