@@ -219,7 +219,7 @@ def _children(pid: int) -> list[int]:
 
 
 def _results(out: Path) -> dict[Path, bytes]:
-    return {path: path.read_bytes() for path in sorted(out.rglob("*.json"))}
+    return {path: path.read_bytes() for path in sorted(out.rglob("seed_*.json")) if "checkpoints" not in path.parts}
 
 
 @pytest.mark.slow
@@ -233,7 +233,7 @@ def test_runner_killed_and_started_again_runs_only_the_missing_runs(tmp_path: Pa
     runs = grid(["ppo", "sac"], ["NetCatch-v0"], quick=True)
     first = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     deadline = time.monotonic() + 300
-    while not list(out.rglob("*.json")) and time.monotonic() < deadline and first.poll() is None:
+    while not _results(out) and time.monotonic() < deadline and first.poll() is None:
         time.sleep(0.2)
     workers = _children(first.pid)
     first.send_signal(signal.SIGKILL)
