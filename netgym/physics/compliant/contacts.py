@@ -76,45 +76,33 @@ NO_CONTACTS = ContactList(np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int6
 contacts never fill (its count stays 0)."""
 
 
+class Point(NamedTuple):
+    """The point a contact touches: its bodies ``i``, ``j`` (-1: none, static) with weights ``wi``,
+    ``wj`` of the point, the penalty's ``weight`` and its derivative ``slope`` along the segment's
+    parameter ``s``, the segment's axis (ex, ey, ez) and its squared length ``l2`` (1 elsewhere)."""
+
+    i: int
+    wi: float
+    j: int
+    wj: float
+    weight: float
+    slope: float
+    s: float
+    ex: float
+    ey: float
+    ez: float
+    l2: float
+
+
 class Feature(NamedTuple):
-    """Where a contact touches: overlap ``delta``, unit normal (nx, ny, nz) towards ``a``, the
-    other side's bodies ``i``, ``j`` (-1: none, static) with weights ``wi``, ``wj`` of the point,
-    the penalty's ``weight`` and its derivative ``slope`` along the segment's parameter ``s``,
-    the segment's axis (ex, ey, ez) and its squared length ``l2`` (1 elsewhere)."""
+    """Where a contact touches: overlap ``delta``, unit normal (nx, ny, nz) towards ``a``, and the
+    :class:`Point` ``at`` on the other side."""
 
     delta: float
     nx: float
     ny: float
     nz: float
-    i: int
-    wi: float
-    j: int
-    wj: float
-    weight: float
-    slope: float
-    s: float
-    ex: float
-    ey: float
-    ez: float
-    l2: float
-
-
-class Point(NamedTuple):
-    """The point ``a`` touches, as a :class:`Feature` names it (the fields of the same names):
-    its bodies ``i``, ``j`` with their weights ``wi``, ``wj``, the penalty's ``weight`` and
-    ``slope`` at the segment's parameter ``s``, the segment's axis (ex, ey, ez) and ``l2``."""
-
-    i: int
-    wi: float
-    j: int
-    wj: float
-    weight: float
-    slope: float
-    s: float
-    ex: float
-    ey: float
-    ez: float
-    l2: float
+    at: Point
 
 
 @inline_kernel
@@ -130,8 +118,7 @@ def _towards(dx, dy, dz, reach, p):
     (m) apart at touch."""
     dist = math.sqrt(dx * dx + dy * dy + dz * dz)
     inv = 1.0 / dist if dist > 1e-12 else 0.0
-    return Feature(reach - dist, dx * inv, dy * inv, dz * inv if dist > 1e-12 else 1.0, p.i, p.wi, p.j, p.wj,
-                   p.weight, p.slope, p.s, p.ex, p.ey, p.ez, p.l2)
+    return Feature(reach - dist, dx * inv, dy * inv, dz * inv if dist > 1e-12 else 1.0, p)
 
 
 @kernel
@@ -142,7 +129,7 @@ def feature(x, model, kind, a, b, region=LIVE):
     xa, ya, za = x[a, 0], x[a, 1], x[a, 2]
     if kind == GROUND or kind == NET_GROUND:
         reach = radius if kind == GROUND else 0.0
-        return Feature(reach - za, 0.0, 0.0, 1.0, -1, 0.0, -1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+        return Feature(reach - za, 0.0, 0.0, 1.0, Point(-1, 0.0, -1, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0))
     if kind == PARTICLE or kind == BALL:
         reach = radius if kind == PARTICLE else 2.0 * radius
         return _towards(xa - x[b, 0], ya - x[b, 1], za - x[b, 2], reach, _body(b))
@@ -196,14 +183,14 @@ def approach(v, a, f):
     """(ux, uy, uz, closing): the velocity of ``a`` relative to the point of :class:`Feature`
     ``f``, and the rate at which their overlap grows (its normal component, negated)."""
     ux, uy, uz = v[a, 0], v[a, 1], v[a, 2]
-    if f.i >= 0:
-        ux -= f.wi * v[f.i, 0]
-        uy -= f.wi * v[f.i, 1]
-        uz -= f.wi * v[f.i, 2]
-    if f.j >= 0:
-        ux -= f.wj * v[f.j, 0]
-        uy -= f.wj * v[f.j, 1]
-        uz -= f.wj * v[f.j, 2]
+    if f.at.i >= 0:
+        ux -= f.at.wi * v[f.at.i, 0]
+        uy -= f.at.wi * v[f.at.i, 1]
+        uz -= f.at.wi * v[f.at.i, 2]
+    if f.at.j >= 0:
+        ux -= f.at.wj * v[f.at.j, 0]
+        uy -= f.at.wj * v[f.at.j, 1]
+        uz -= f.at.wj * v[f.at.j, 2]
     return ux, uy, uz, -(ux * f.nx + uy * f.ny + uz * f.nz)
 
 
@@ -244,8 +231,8 @@ def _push(f, k, fx, fy, fz, scale):
 def spread(f, a, ft, fx, fy, fz):
     """Add (fx, fy, fz) to ``a`` and its reaction to the point's bodies, by their weights."""
     _push(f, a, fx, fy, fz, 1.0)
-    _push(f, ft.i, fx, fy, fz, -ft.wi)
-    _push(f, ft.j, fx, fy, fz, -ft.wj)
+    _push(f, ft.at.i, fx, fy, fz, -ft.at.wi)
+    _push(f, ft.at.j, fx, fy, fz, -ft.at.wj)
 
 
 @inline_kernel
@@ -260,14 +247,14 @@ def mode_of(delta, rate, damping):
 def segment_slope_force(f, x, a, ft, stiffness):
     """The force of the segment penalty's weight changing along the segment: minus the gradient
     of ``stiffness delta^2 w(s) / 2`` through ``s``, on the ball and the segment's two ends."""
-    scale = -0.5 * stiffness * ft.delta * ft.delta * ft.slope / ft.l2
-    i = ft.i
+    scale = -0.5 * stiffness * ft.delta * ft.delta * ft.at.slope / ft.at.l2
+    i = ft.at.i
     ax, ay, az = x[a, 0] - x[i, 0], x[a, 1] - x[i, 1], x[a, 2] - x[i, 2]
     # ds/dx_a = e / l2; ds/dx_j = (a - 2 s e) / l2; ds/dx_i = -(both)
-    gx, gy, gz = ax - 2.0 * ft.s * ft.ex, ay - 2.0 * ft.s * ft.ey, az - 2.0 * ft.s * ft.ez
-    _push(f, a, ft.ex, ft.ey, ft.ez, scale)
-    _push(f, ft.j, gx, gy, gz, scale)
-    _push(f, i, ft.ex + gx, ft.ey + gy, ft.ez + gz, -scale)
+    gx, gy, gz = ax - 2.0 * ft.at.s * ft.at.ex, ay - 2.0 * ft.at.s * ft.at.ey, az - 2.0 * ft.at.s * ft.at.ez
+    _push(f, a, ft.at.ex, ft.at.ey, ft.at.ez, scale)
+    _push(f, ft.at.j, gx, gy, gz, scale)
+    _push(f, i, ft.at.ex + gx, ft.at.ey + gy, ft.at.ez + gz, -scale)
 
 
 @kernel
@@ -309,7 +296,7 @@ def potential(x, model, contacts, stiffness):
     for c in range(contacts.count[0]):
         ft = feature(x, model, contacts.kind[c], contacts.a[c], contacts.b[c])
         if ft.delta > 0.0:
-            total += 0.5 * stiffness * ft.weight * ft.delta * ft.delta
+            total += 0.5 * stiffness * ft.at.weight * ft.delta * ft.delta
     return total
 
 

@@ -17,10 +17,10 @@ from netgym.physics.kernels.jit import inline_kernel, kernel
 def inverse_effective_mass(inv_mass, a, ft):
     """The inverse mass a contact's force meets: ``a``'s and the point's bodies' by their weights squared."""
     w = inv_mass[a]
-    if ft.i >= 0:
-        w += ft.wi * ft.wi * inv_mass[ft.i]
-    if ft.j >= 0:
-        w += ft.wj * ft.wj * inv_mass[ft.j]
+    if ft.at.i >= 0:
+        w += ft.at.wi * ft.at.wi * inv_mass[ft.at.i]
+    if ft.at.j >= 0:
+        w += ft.at.wj * ft.at.wj * inv_mass[ft.at.j]
     return w
 
 
@@ -50,9 +50,9 @@ def tangent(x, v, inv_mass, model, contacts, c, stiffness, damping, frozen):
     ux, uy, uz, closing = cl.approach(v, a, ft)
     d = damping[kind]
     mode = contacts.mode[c] if frozen else cl.mode_of(ft.delta, closing, d)
-    normal = law.free_normal_force(stiffness * ft.weight, ft.delta, closing, d) if mode == cl.ON else 0.0
+    normal = law.free_normal_force(stiffness * ft.at.weight, ft.delta, closing, d) if mode == cl.ON else 0.0
     tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
-    k_t, c_t = grip.anchor_terms(stiffness, ft.weight, inverse_effective_mass(inv_mass, a, ft))
+    k_t, c_t = grip.anchor_terms(stiffness, ft.at.weight, inverse_effective_mass(inv_mass, a, ft))
     return Tangent(ft, mode, normal, tx, ty, tz, math.sqrt(tx * tx + ty * ty + tz * tz), cl.material(model, kind)[1],
                    k_t, c_t)
 
@@ -72,7 +72,7 @@ def add_forces(x, v, inv_mass, model, contacts, stiffness, damping, frozen, f, a
             continue
         a, ft, normal = contacts.a[c], tg.ft, tg.normal
         cl.spread(f, a, ft, normal * ft.nx, normal * ft.ny, normal * ft.nz)
-        if ft.slope != 0.0:
+        if ft.at.slope != 0.0:
             cl.segment_slope_force(f, x, a, ft, stiffness)
         if tg.friction <= 0.0 or normal == 0.0:  # frozen ON: the continuation's, up to the event
             continue

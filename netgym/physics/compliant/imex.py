@@ -26,7 +26,7 @@ from netgym.physics.kernels.rows import copy_rows
 @inline_kernel
 def _impulse(v, inv_mass, a, ft, jx, jy, jz):
     """Apply the impulse (jx, jy, jz) to ``a`` and its reaction to the point's bodies."""
-    for k, share in ((a, 1.0), (ft.i, -ft.wi), (ft.j, -ft.wj)):
+    for k, share in ((a, 1.0), (ft.at.i, -ft.at.wi), (ft.at.j, -ft.at.wj)):
         if k >= 0:
             w = inv_mass[k] * share
             v[k, 0] += w * jx
@@ -80,10 +80,10 @@ def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping, z)
     for c in range(contacts.count[0]):
         kind, a = contacts.kind[c], contacts.a[c]
         ft = cl.feature(x, model, kind, a, contacts.b[c])
-        if ft.delta <= 0.0 or ft.weight == 0.0:
+        if ft.delta <= 0.0 or ft.at.weight == 0.0:
             continue
         w_eff = forces.inverse_effective_mass(inv_mass, a, ft)
-        hk = h * stiffness * ft.weight * ft.delta
+        hk = h * stiffness * ft.at.weight * ft.delta
         d = damping[kind]
         _, _, _, closing = cl.approach(v, a, ft)
         after = (closing - w_eff * hk) / (1.0 + w_eff * hk * d)
@@ -95,7 +95,7 @@ def _contact_impulses(x, v, inv_mass, model, h, contacts, stiffness, damping, z)
         ux, uy, uz, closing = cl.approach(v, a, ft)
         tx, ty, tz = ux + closing * ft.nx, uy + closing * ft.ny, uz + closing * ft.nz
         if contacts.grip[c] == grip.STICK:
-            terms = grip.anchor_terms(stiffness, ft.weight, w_eff)
+            terms = grip.anchor_terms(stiffness, ft.at.weight, w_eff)
             if _held(v, inv_mass, a, ft, h, w_eff, terms, friction * push / h, z[c], (tx, ty, tz)):
                 continue
             contacts.grip[c] = grip.SLOW
@@ -121,7 +121,7 @@ def imex(x, v, inv_mass, model, net_gravity, h, work, stiffness, scratch):
     f[:] = 0.0
     for c in range(contacts.count[0]):
         ft = cl.feature(x, model, contacts.kind[c], contacts.a[c], contacts.b[c])
-        if ft.delta > 0.0 and ft.slope != 0.0:
+        if ft.delta > 0.0 and ft.at.slope != 0.0:
             cl.segment_slope_force(f, x, contacts.a[c], ft, stiffness)
     for k in range(x.shape[0]):
         for c in range(3):

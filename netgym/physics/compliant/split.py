@@ -53,12 +53,12 @@ def frequency_bound(x, inv_mass, model, contacts, stiffness, load):
         a = contacts.a[c]
         ft = feature(x, model, contacts.kind[c], a, contacts.b[c])
         ra = math.sqrt(inv_mass[a])
-        ri = ft.wi * math.sqrt(inv_mass[ft.i]) if ft.i >= 0 else 0.0
-        rj = ft.wj * math.sqrt(inv_mass[ft.j]) if ft.j >= 0 else 0.0
-        scale = ft.weight * (ra + ri + rj)
+        ri = ft.at.wi * math.sqrt(inv_mass[ft.at.i]) if ft.at.i >= 0 else 0.0
+        rj = ft.at.wj * math.sqrt(inv_mass[ft.at.j]) if ft.at.j >= 0 else 0.0
+        scale = ft.at.weight * (ra + ri + rj)
         _load(load, a, scale * ra)
-        _load(load, ft.i, scale * ri)
-        _load(load, ft.j, scale * rj)
+        _load(load, ft.at.i, scale * ri)
+        _load(load, ft.at.j, scale * rj)
     for c in range(count):
         i, j = _other_bodies(model, contacts.kind[c], contacts.b[c])
         top = max(top, load[contacts.a[c]], load[i] if i >= 0 else 0.0, load[j] if j >= 0 else 0.0)
